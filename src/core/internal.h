@@ -1,0 +1,46 @@
+/*
+** internal.h
+** Helpers shared by the files of src/core; not part of the public API.
+*/
+#ifndef BSFIT_INTERNAL_H
+#define BSFIT_INTERNAL_H
+
+#include "../bsfit.h"
+
+#include <stddef.h>
+
+#if defined(__GNUC__)
+#  define BSFIT_PRINTF(a, b) __attribute__((format(printf, a, b)))
+#else
+#  define BSFIT_PRINTF(a, b)
+/* curve.c: u wrapped into one period (periodic curves only; others unchanged) */
+double bsfit__curve_wrap(const bsfit_curve *c, double u);
+/* curve.c: C(u) for a valid curve and finite u, no checks */
+void bsfit__curve_eval_unchecked(const bsfit_curve *c, double u, double *out);
+
+#endif
+
+/* Records code and a formatted message in st (when not NULL); returns code. */
+bsfit_err bsfit__fail(bsfit_status *st, bsfit_err code, const char *fmt, ...) BSFIT_PRINTF(3, 4);
+
+/* Marks st as successful; returns BSFIT_OK. */
+bsfit_err bsfit__ok(bsfit_status *st);
+
+/* Allocation through an optional allocator (NULL or NULL fn = realloc/free).
+** bsfit__alloc returns NULL for nsize == 0 or on failure. */
+void *bsfit__alloc(const bsfit_allocator *a, size_t nsize);
+void *bsfit__realloc(const bsfit_allocator *a, void *p, size_t osize, size_t nsize);
+void bsfit__free(const bsfit_allocator *a, void *p, size_t osize);
+
+/* n*size without overflow; 0 on overflow (callers treat 0 as an error). */
+size_t bsfit__mulsize(size_t n, size_t size);
+
+/* Non-zero when every one of the n doubles is finite. */
+int bsfit__all_finite(const double *x, size_t n);
+
+/* curve.c: u wrapped into one period (periodic curves only; others unchanged) */
+double bsfit__curve_wrap(const bsfit_curve *c, double u);
+/* curve.c: C(u) for a valid curve and finite u, no checks */
+void bsfit__curve_eval_unchecked(const bsfit_curve *c, double u, double *out);
+
+#endif
