@@ -1,0 +1,19 @@
+#!/usr/bin/env bash
+# test.sh: install what is missing, build, and run every test twice:
+# a normal build (build/) and an AddressSanitizer + UBSan build (build-asan/).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+jobs=$(nproc 2>/dev/null || echo 2)
+
+bash scripts/deps.sh --test
+
+echo "== normal build (build/)"
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DBSFIT_TESTS=ON -DBSFIT_WERROR=ON >/dev/null
+cmake --build build -j "$jobs"
+(cd build && ctest --output-on-failure -j "$jobs")
+
+echo "== sanitizer build (build-asan/: AddressSanitizer + UBSan)"
+cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Debug -DBSFIT_SANITIZE=ON -DBSFIT_TESTS=ON -DBSFIT_WERROR=ON -DBSFIT_BENCH=OFF >/dev/null
+cmake --build build-asan -j "$jobs"
+(cd build-asan && ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+  ctest --output-on-failure -j "$jobs")

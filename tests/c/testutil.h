@@ -1,0 +1,52 @@
+/*
+** testutil.h
+** Small helpers shared by the cmocka tests: a deterministic random generator,
+** random knot vectors and tolerance names.
+*/
+#ifndef BSFIT_TESTUTIL_H
+#define BSFIT_TESTUTIL_H
+
+#include <math.h>
+#include <stddef.h>
+#include <stdint.h>
+
+/* tolerances, named per domain */
+#define EPS_EXACT 1e-14 /* identities that hold up to rounding */
+#define EPS_KNOT 1e-12  /* knot values */
+#define EPS_FD 1e-6     /* finite differences (relative) */
+
+/* xorshift64*: deterministic, so a failing case can be reproduced */
+typedef struct test_rng {
+  uint64_t s;
+} test_rng;
+
+static inline double rng_uniform(test_rng *r) {
+  r->s ^= r->s >> 12;
+  r->s ^= r->s << 25;
+  r->s ^= r->s >> 27;
+  return (double)((r->s * 2685821657736338717ULL) >> 11) * (1.0 / 9007199254740992.0);
+}
+
+static inline double rng_range(test_rng *r, double a, double b) { return a + (b - a) * rng_uniform(r); }
+
+/* Random non-decreasing knot vector for degree p and n control points: clamped
+** ends when `clamped`, random interior knots (some repeated, multiplicity <= p). */
+static inline void random_knots(test_rng *r, int p, size_t n, int clamped, double *U) {
+  size_t nk = n + (size_t)p + 1, i, run = 1;
+  for (i = 0; i < nk; i++) {
+    double step = rng_range(r, 0.1, 1.0);
+    if (i == 0) {
+      U[0] = 0.0;
+    } else if (clamped && (i <= (size_t)p || i > n)) {
+      U[i] = U[i - 1];
+    } else if (i != n && run < (size_t)p &&
+               rng_uniform(r) < 0.15 && !(clamped && i == n)) {
+      U[i] = U[i - 1]; /* an interior repeated knot, multiplicity <= p */
+    } else {
+      U[i] = U[i - 1] + step;
+    }
+    run = (i > 0 && U[i] == U[i - 1]) ? run + 1 : 1;
+  }
+}
+
+#endif
