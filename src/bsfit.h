@@ -19,7 +19,8 @@
 **   bsfit_surface.h  tensor-product surfaces
 **   bsfit_fit.h      parameters, knot placement, weighted least squares
 **   bsfit_filter.h   smoothing by box filtering (Persiano)
-**   bsfit_io.h       point files
+**   bsfit_io.h       point files, curve JSON, SVG, IGES
+**   bsfit_geom.h     geometry kernels on point sequences (weights, angles)
 */
 #ifndef BSFIT_H
 #define BSFIT_H
@@ -287,6 +288,7 @@ BSFIT_API bsfit_err bsfit_curve_eval(const bsfit_curve *c, double u, double *out
 #include "bsfit_fit.h"
 #include "bsfit_filter.h"
 #include "bsfit_io.h"
+#include "bsfit_geom.h"
 
 #ifdef __cplusplus
 }
