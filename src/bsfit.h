@@ -21,6 +21,7 @@
 **   bsfit_filter.h   smoothing by box filtering (Persiano)
 **   bsfit_io.h       point files, curve JSON, SVG, IGES
 **   bsfit_geom.h     geometry kernels on point sequences (weights, angles)
+**   bsfit_analysis.h noise level and corners of a section
 */
 #ifndef BSFIT_H
 #define BSFIT_H
@@ -289,6 +290,7 @@ BSFIT_API bsfit_err bsfit_curve_eval(const bsfit_curve *c, double u, double *out
 #include "bsfit_filter.h"
 #include "bsfit_io.h"
 #include "bsfit_geom.h"
+#include "bsfit_analysis.h"
 
 #ifdef __cplusplus
 }

@@ -1,0 +1,402 @@
+/*
+** corners.c
+** Sharp corners of a noisy ordered contour: two straight sides meeting near the data
+** at a turn much larger than the noise allows (see bsfit_analysis.h).
+*/
+#include "internal.h"
+
+#include <math.h>
+#include <string.h>
+
+#define PI 3.14159265358979323846
+
+/* first and second moments of a run of points, from prefix sums */
+typedef struct moments {
+  double n, s[3], ss[3][3];
+} moments;
+
+typedef struct side {
+  double dir[3];  /* unit direction, oriented along the traversal */
+  double centre[3];
+  double rms;     /* RMS distance of the side's points to its line */
+  double extent;  /* distance from the corner point to the far end */
+  size_t count;
+  double outer_dir[3], outer_centre[3]; /* line of the outer half (from scale/2 on) */
+} side;
+
+typedef struct contour {
+  const double *pts;
+  size_t m;
+  int dim, closed;
+  double *prefix; /* (m+1) * 10: n, sx, sy, sz, sxx, sxy, sxz, syy, syz, szz over [0, i) */
+  double origin[3];
+} contour;
+
+static const double *point(const contour *c, size_t i) { return c->pts + (i % c->m) * (size_t)c->dim; }
+
+static double dist(const contour *c, size_t i, size_t j) {
+  const double *a = point(c, i), *b = point(c, j);
+  double s = 0;
+  int d;
+  for (d = 0; d < c->dim; d++) s += (a[d] - b[d]) * (a[d] - b[d]);
+  return sqrt(s);
+}
+
+static void build_prefix(contour *c) {
+  size_t i;
+  int d, e, q;
+  memset(c->prefix, 0, 10 * sizeof(double));
+  for (i = 0; i < c->m; i++) {
+    const double *P = point(c, i);
+    double x[3] = {0, 0, 0};
+    double *cur = c->prefix + (i + 1) * 10, *prev = c->prefix + i * 10;
+    for (d = 0; d < c->dim; d++) x[d] = P[d] - c->origin[d];
+    cur[0] = prev[0] + 1;
+    for (d = 0; d < 3; d++) cur[1 + d] = prev[1 + d] + x[d];
+    for (d = 0, q = 4; d < 3; d++)
+      for (e = d; e < 3; e++, q++) cur[q] = prev[q] + x[d] * x[e];
+  }
+}
+
+/* moments of the points first..last inclusive, walking forward (modulo m if closed) */
+static moments run_moments(const contour *c, size_t first, size_t last) {
+  moments mo;
+  double acc[10];
+  int q, d, e;
+  if (first <= last) {
+    for (q = 0; q < 10; q++) acc[q] = c->prefix[(last + 1) * 10 + q] - c->prefix[first * 10 + q];
+  } else { /* wraps: [first, m) + [0, last] */
+    for (q = 0; q < 10; q++)
+      acc[q] = c->prefix[c->m * 10 + q] - c->prefix[first * 10 + q] + c->prefix[(last + 1) * 10 + q];
+  }
+  mo.n = acc[0];
+  for (d = 0; d < 3; d++) mo.s[d] = acc[1 + d];
+  for (d = 0, q = 4; d < 3; d++)
+    for (e = d; e < 3; e++, q++) mo.ss[d][e] = mo.ss[e][d] = acc[q];
+  return mo;
+}
+
+/* principal direction of the covariance (power iteration, started on `hint`) and the
+** variance left across it */
+static void fit_line(const contour *c, const moments *mo, const double *hint, side *sd) {
+  double cov[3][3], v[3], lam = 0, tr = 0;
+  int d, e, it;
+  for (d = 0; d < 3; d++) sd->centre[d] = mo->s[d] / mo->n;
+  for (d = 0; d < 3; d++)
+    for (e = 0; e < 3; e++) cov[d][e] = mo->ss[d][e] / mo->n - sd->centre[d] * sd->centre[e];
+  for (d = 0; d < 3; d++) {
+    v[d] = hint[d];
+    tr += cov[d][d];
+  }
+  for (it = 0; it < 60; it++) {
+    double w[3] = {0, 0, 0}, nrm = 0;
+    for (d = 0; d < c->dim; d++)
+      for (e = 0; e < c->dim; e++) w[d] += cov[d][e] * v[e];
+    for (d = 0; d < 3; d++) nrm += w[d] * w[d];
+    nrm = sqrt(nrm);
+    if (!(nrm > 0)) break;
+    for (d = 0; d < 3; d++) v[d] = w[d] / nrm;
+    lam = nrm;
+  }
+  {
+    double dot = 0;
+    for (d = 0; d < 3; d++) dot += v[d] * hint[d];
+    for (d = 0; d < 3; d++) sd->dir[d] = dot < 0 ? -v[d] : v[d];
+  }
+  sd->rms = sqrt(fmax(tr - lam, 0.0));
+  for (d = 0; d < 3; d++) sd->centre[d] += c->origin[d];
+}
+
+static size_t step(const contour *c, size_t i, int forward) {
+  if (forward) return (i + 1) % c->m;
+  return (i + c->m - 1) % c->m;
+}
+
+/* The side of point k in one direction: the points after (or before) k until one is
+** `scale` away, k itself excluded (a corner between two samples would otherwise bend
+** both sides). 0 when the side is too short or has fewer than 3 points. */
+static int collect_side(const contour *c, size_t k, int forward, double scale, side *sd,
+                        size_t *far_index) {
+  size_t j = k, count = 0, limit = c->closed ? c->m / 2 : c->m, first, mid = k, nouter = 0;
+  double hint[3] = {0, 0, 0};
+  moments mo;
+  side outer;
+  int d;
+  while (count < limit) {
+    size_t nxt = step(c, j, forward);
+    if (!c->closed && ((forward && nxt == 0) || (!forward && j == 0))) break;
+    j = nxt;
+    count++;
+    if (mid == k && dist(c, j, k) >= 0.5 * scale) mid = j;
+    if (mid != k) nouter++;
+    if (dist(c, j, k) >= scale) break;
+  }
+  if (count < 3 || dist(c, j, k) < 0.5 * scale) return 0;
+  first = step(c, k, forward);
+  mo = forward ? run_moments(c, first, j) : run_moments(c, j, first);
+  for (d = 0; d < c->dim; d++) hint[d] = forward ? point(c, j)[d] - point(c, k)[d] : point(c, k)[d] - point(c, j)[d];
+  fit_line(c, &mo, hint, sd);
+  /* The outer half stands for the tangent of a rounded bend, the whole side for a
+  ** secant; secants of a fillet meet near the arc, tangents do not. */
+  if (nouter >= 3) {
+    mo = forward ? run_moments(c, mid, j) : run_moments(c, j, mid);
+    fit_line(c, &mo, hint, &outer);
+  } else {
+    outer = *sd;
+  }
+  memcpy(sd->outer_dir, outer.dir, sizeof outer.dir);
+  memcpy(sd->outer_centre, outer.centre, sizeof outer.centre);
+  sd->extent = dist(c, j, k);
+  sd->count = count;
+  *far_index = j;
+  return 1;
+}
+
+/* angle between the two sides of k at the given scale, or -1 if a side is too short */
+static double turn_at_scale(const contour *c, size_t k, double scale, side *left, side *right,
+                            size_t *from, size_t *to) {
+  double cosang = 0;
+  int d;
+  if (!collect_side(c, k, 0, scale, left, from) || !collect_side(c, k, 1, scale, right, to))
+    return -1.0;
+  for (d = 0; d < 3; d++) cosang += left->dir[d] * right->dir[d];
+  return acos(fmax(-1.0, fmin(1.0, cosang)));
+}
+
+/* intersection (2D) or midpoint of closest approach (3D) of the outer side lines */
+static int meet(const side *a, const side *b, int dim, double *x) {
+  double w[3], aa = 0, ab = 0, bb = 0, aw = 0, bw = 0, den, s, t;
+  const double *ad = a->outer_dir, *bd = b->outer_dir, *ac = a->outer_centre, *bc = b->outer_centre;
+  int d;
+  for (d = 0; d < 3; d++) {
+    w[d] = ac[d] - bc[d];
+    aa += ad[d] * ad[d];
+    ab += ad[d] * bd[d];
+    bb += bd[d] * bd[d];
+    aw += ad[d] * w[d];
+    bw += bd[d] * w[d];
+  }
+  den = aa * bb - ab * ab;
+  if (!(den > 1e-12)) return 0;
+  s = (ab * bw - bb * aw) / den;
+  t = (aa * bw - ab * aw) / den;
+  for (d = 0; d < dim; d++) x[d] = 0.5 * ((ac[d] + s * ad[d]) + (bc[d] + t * bd[d]));
+  return 1;
+}
+
+typedef struct candidate {
+  size_t k, from, to; /* the corner and its window (inclusive, along the traversal) */
+  double angle, gap; /* the turn, and the distance from the side lines' meeting point */
+} candidate;
+
+static double median_spacing(const contour *c, double *scratch) {
+  size_t i, n = c->closed ? c->m : c->m - 1;
+  for (i = 0; i < n; i++) scratch[i] = dist(c, i, i + 1);
+  return bsfit__select(scratch, n, n / 2);
+}
+
+static double bbox_diagonal(const contour *c) {
+  double lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0}, s = 0;
+  size_t i;
+  int d;
+  for (d = 0; d < c->dim; d++) lo[d] = hi[d] = c->pts[d];
+  for (i = 0; i < c->m; i++)
+    for (d = 0; d < c->dim; d++) {
+      double v = point(c, i)[d];
+      if (v < lo[d]) lo[d] = v;
+      if (v > hi[d]) hi[d] = v;
+    }
+  for (d = 0; d < c->dim; d++) s += (hi[d] - lo[d]) * (hi[d] - lo[d]);
+  return sqrt(s);
+}
+
+/* Residual sum of squares of the best smooth model of the window from..to (inclusive):
+** a parabola t = c0 + c1 s + c2 s^2 in the frame of the window's chord. A sharp corner
+** cannot be followed by it; a tight smooth bend can. */
+static double parabola_rss(const contour *c, size_t from, size_t to) {
+  const double *a = point(c, from), *b = point(c, to);
+  double ax[3] = {0, 0, 0}, len = 0, A[3][3] = {{0}}, rhs[3] = {0}, sum_tt = 0, coef[3];
+  size_t i, n = (to + c->m - from) % c->m + 1;
+  int d, p, q;
+  for (d = 0; d < c->dim; d++) {
+    ax[d] = b[d] - a[d];
+    len += ax[d] * ax[d];
+  }
+  len = sqrt(len);
+  if (!(len > 0)) return INFINITY; /* the window folds back onto itself */
+  for (d = 0; d < c->dim; d++) ax[d] /= len;
+  for (i = 0; i < n; i++) {
+    const double *P = point(c, from + i);
+    double s = 0, t2 = 0, x[3];
+    for (d = 0; d < c->dim; d++) s += (P[d] - a[d]) * ax[d];
+    for (d = 0; d < c->dim; d++) {
+      double r = P[d] - a[d] - s * ax[d];
+      t2 += r * r;
+    }
+    /* signed normal coordinate in 2D; in 3D the distance to the chord stands in */
+    if (c->dim == 2) t2 = (P[1] - a[1]) * ax[0] - (P[0] - a[0]) * ax[1];
+    else t2 = sqrt(t2);
+    s /= len;
+    x[0] = 1.0;
+    x[1] = s;
+    x[2] = s * s;
+    for (p = 0; p < 3; p++) {
+      for (q = 0; q < 3; q++) A[p][q] += x[p] * x[q];
+      rhs[p] += x[p] * t2;
+    }
+    sum_tt += t2 * t2;
+  }
+  /* solve the 3x3 normal equations (Cramer is enough at this size) */
+  {
+    double det = A[0][0] * (A[1][1] * A[2][2] - A[1][2] * A[2][1]) -
+                 A[0][1] * (A[1][0] * A[2][2] - A[1][2] * A[2][0]) +
+                 A[0][2] * (A[1][0] * A[2][1] - A[1][1] * A[2][0]);
+    double rss;
+    if (!(fabs(det) > 1e-14)) return INFINITY;
+    for (p = 0; p < 3; p++) {
+      double M[3][3];
+      memcpy(M, A, sizeof M);
+      for (q = 0; q < 3; q++) M[q][p] = rhs[q];
+      coef[p] = (M[0][0] * (M[1][1] * M[2][2] - M[1][2] * M[2][1]) -
+                 M[0][1] * (M[1][0] * M[2][2] - M[1][2] * M[2][0]) +
+                 M[0][2] * (M[1][0] * M[2][1] - M[1][1] * M[2][0])) / det;
+    }
+    rss = sum_tt - (coef[0] * rhs[0] + coef[1] * rhs[1] + coef[2] * rhs[2]);
+    return fmax(rss, 0.0);
+  }
+}
+
+/* The turn at k if it is a corner candidate, else a negative value. */
+static double corner_turn(const contour *c, size_t k, double scale, double sigma,
+                          double spacing, double min_angle, size_t *from, size_t *to,
+                          double *gap_out) {
+  side left, right, half_left, half_right;
+  double angle, half, se, x[3], gap = 0, rss_lines, rss_smooth;
+  size_t half_from, half_to;
+  int d;
+  angle = turn_at_scale(c, k, scale, &left, &right, from, to);
+  if (angle < 0) return -1.0;
+  /* standard error of a line direction fitted to n points spread over `extent` */
+  se = sigma * sqrt(12.0 / (double)left.count) / left.extent +
+       sigma * sqrt(12.0 / (double)right.count) / right.extent;
+  if (angle < min_angle || angle < 6.0 * se) return -1.0;
+  if (left.rms > 2.5 * sigma + 0.02 * scale || right.rms > 2.5 * sigma + 0.02 * scale) return -1.0;
+  if (!meet(&left, &right, c->dim, x)) return -1.0;
+  for (d = 0; d < c->dim; d++) gap += (x[d] - point(c, k)[d]) * (x[d] - point(c, k)[d]);
+  *gap_out = sqrt(gap);
+  if (*gap_out > 3.0 * sigma + 0.5 * spacing + 0.02 * scale) return -1.0;
+  /* two lines must explain the window far better than a smooth bend does */
+  rss_lines = (double)left.count * left.rms * left.rms + (double)right.count * right.rms * right.rms;
+  rss_smooth = parabola_rss(c, *from, *to);
+  if (rss_smooth - rss_lines < 25.0 * sigma * sigma ||
+      rss_smooth < 2.0 * rss_lines)
+    return -1.0;
+  /* a corner turns as much at half the scale; a bend turns less, in proportion */
+  half = turn_at_scale(c, k, 0.5 * scale, &half_left, &half_right, &half_from, &half_to);
+  if (half >= 0 && half < 0.75 * angle) return -1.0;
+  return angle;
+}
+
+static int in_window(const candidate *w, size_t k, size_t m) {
+  /* is k within [from, to] walking forward (possibly across the end)? */
+  size_t len = (w->to + m - w->from) % m;
+  return (k + m - w->from) % m <= len;
+}
+
+/* Keeps the candidates nearest to where their side lines meet (the neighbours of a
+** corner pass the tests too, with a larger gap); a kept corner suppresses the
+** candidates in its window. */
+static size_t thin_candidates(candidate *cand, size_t nc, size_t m) {
+  size_t i, j, kept = 0;
+  /* insertion sort by increasing gap: the candidates are few */
+  for (i = 1; i < nc; i++) {
+    candidate t = cand[i];
+    for (j = i; j > 0 && cand[j - 1].gap > t.gap; j--) cand[j] = cand[j - 1];
+    cand[j] = t;
+  }
+  for (i = 0; i < nc; i++) {
+    int free_ = 1;
+    for (j = 0; j < kept && free_; j++)
+      if (in_window(&cand[j], cand[i].k, m) || in_window(&cand[i], cand[j].k, m)) free_ = 0;
+    if (free_) cand[kept++] = cand[i];
+  }
+  /* back to contour order */
+  for (i = 1; i < kept; i++) {
+    candidate t = cand[i];
+    for (j = i; j > 0 && cand[j - 1].k > t.k; j--) cand[j] = cand[j - 1];
+    cand[j] = t;
+  }
+  return kept;
+}
+
+bsfit_err bsfit_corners_detect(const double *pts, size_t m, int dim,
+                               const bsfit_corner_opts *opts, size_t *idx, double *angles,
+                               size_t cap, size_t *count, bsfit_status *st) {
+  contour c;
+  candidate *cand;
+  double sigma, scale, spacing, min_angle, *scratch;
+  size_t k, nc = 0, kept, bytes_prefix, bytes_cand;
+  bsfit_corner_opts o;
+  bsfit_err e;
+  memset(&o, 0, sizeof o);
+  if (opts) o = *opts;
+  *count = 0;
+  if (o.scale < 0 || !isfinite(o.scale) || !isfinite(o.sigma) || o.min_angle_deg < 0 ||
+      o.min_angle_deg >= 180 || !isfinite(o.min_angle_deg))
+    return bsfit__fail(st, BSFIT_EINVAL, "corner options: scale %g, sigma %g, min_angle_deg %g out of range",
+                       o.scale, o.sigma, o.min_angle_deg);
+  sigma = o.sigma;
+  if (sigma <= 0) {
+    e = bsfit_noise_sigma(pts, m, dim, o.closed, &sigma, st);
+    if (e != BSFIT_OK) return e;
+  } else if (dim != 2 && dim != 3) {
+    return bsfit__fail(st, BSFIT_EDIM, "corner detection needs 2D or 3D points, got dim %d", dim);
+  } else if (pts == NULL || m < 6) {
+    return bsfit__fail(st, BSFIT_ETOOFEW, "corner detection needs at least 6 points, got %zu", m);
+  } else if (!bsfit__all_finite(pts, m * (size_t)dim)) {
+    return bsfit__fail(st, BSFIT_ENONFINITE, "points contain NaN or Inf");
+  }
+  memset(&c, 0, sizeof c);
+  c.pts = pts;
+  c.m = m;
+  c.dim = dim;
+  c.closed = o.closed != 0;
+  memcpy(c.origin, pts, (size_t)dim * sizeof(double));
+  bytes_prefix = (m + 1) * 10 * sizeof(double);
+  bytes_cand = m * sizeof(candidate);
+  c.prefix = bsfit__alloc(NULL, bytes_prefix);
+  cand = bsfit__alloc(NULL, bytes_cand);
+  scratch = bsfit__alloc(NULL, m * sizeof(double));
+  if (c.prefix == NULL || cand == NULL || scratch == NULL) {
+    e = bsfit__fail(st, BSFIT_ENOMEM, "out of memory for corner detection of %zu points", m);
+    goto done;
+  }
+  build_prefix(&c);
+  spacing = median_spacing(&c, scratch);
+  scale = o.scale > 0 ? o.scale : fmin(fmax(40.0 * sigma, 4.0 * spacing), 0.1 * bbox_diagonal(&c));
+  min_angle = (o.min_angle_deg > 0 ? o.min_angle_deg : 30.0) * PI / 180.0;
+  for (k = 0; k < m; k++) {
+    size_t from, to;
+    double gap = 0, a = corner_turn(&c, k, scale, sigma, spacing, min_angle, &from, &to, &gap);
+    if (a >= 0) {
+      cand[nc].k = k;
+      cand[nc].from = from;
+      cand[nc].to = to;
+      cand[nc].angle = a;
+      cand[nc].gap = gap;
+      nc++;
+    }
+  }
+  kept = thin_candidates(cand, nc, m);
+  for (k = 0; k < kept && k < cap; k++) {
+    idx[k] = cand[k].k;
+    if (angles) angles[k] = cand[k].angle * 180.0 / PI;
+  }
+  *count = kept;
+  e = bsfit__ok(st);
+done:
+  bsfit__free(NULL, c.prefix, bytes_prefix);
+  bsfit__free(NULL, cand, bytes_cand);
+  bsfit__free(NULL, scratch, m * sizeof(double));
+  return e;
+}
