@@ -19,7 +19,7 @@
 **   bsfit_surface.h  tensor-product surfaces
 **   bsfit_fit.h      parameters, knot placement, weighted least squares
 **   bsfit_filter.h   smoothing by box filtering (Persiano)
-**   bsfit_io.h       point files, curve JSON, SVG, IGES
+**   bsfit_io.h       files: points, curve/surface JSON, SVG, IGES, atomic writing
 **   bsfit_geom.h     geometry kernels on point sequences (weights, angles)
 **   bsfit_analysis.h noise level and corners of a section
 */

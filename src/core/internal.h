@@ -13,14 +13,6 @@
 #  define BSFIT_PRINTF(a, b) __attribute__((format(printf, a, b)))
 #else
 #  define BSFIT_PRINTF(a, b)
-/* curve.c: u wrapped into one period (periodic curves only; others unchanged) */
-double bsfit__curve_wrap(const bsfit_curve *c, double u);
-/* curve.c: C(u) for a valid curve and finite u, no checks */
-void bsfit__curve_eval_unchecked(const bsfit_curve *c, double u, double *out);
-
-/* noise.c: k-th smallest of x[0..n-1], reordering x (selection, O(n) expected) */
-double bsfit__select(double *x, size_t n, size_t k);
-
 #endif
 
 /* Records code and a formatted message in st (when not NULL); returns code. */
@@ -40,6 +32,14 @@ size_t bsfit__mulsize(size_t n, size_t size);
 
 /* Non-zero when every one of the n doubles is finite. */
 int bsfit__all_finite(const double *x, size_t n);
+
+/* curve.c: u wrapped into one period (periodic curves only; others unchanged) */
+double bsfit__curve_wrap(const bsfit_curve *c, double u);
+/* curve.c: C(u) for a valid curve and finite u, no checks */
+void bsfit__curve_eval_unchecked(const bsfit_curve *c, double u, double *out);
+
+/* noise.c: k-th smallest of x[0..n-1], reordering x (selection, O(n) expected) */
+double bsfit__select(double *x, size_t n, size_t k);
 
 /* curve.c: u wrapped into one period (periodic curves only; others unchanged) */
 double bsfit__curve_wrap(const bsfit_curve *c, double u);
