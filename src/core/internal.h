@@ -41,12 +41,4 @@ void bsfit__curve_eval_unchecked(const bsfit_curve *c, double u, double *out);
 /* noise.c: k-th smallest of x[0..n-1], reordering x (selection, O(n) expected) */
 double bsfit__select(double *x, size_t n, size_t k);
 
-/* curve.c: u wrapped into one period (periodic curves only; others unchanged) */
-double bsfit__curve_wrap(const bsfit_curve *c, double u);
-/* curve.c: C(u) for a valid curve and finite u, no checks */
-void bsfit__curve_eval_unchecked(const bsfit_curve *c, double u, double *out);
-
-/* noise.c: k-th smallest of x[0..n-1], reordering x (selection, O(n) expected) */
-double bsfit__select(double *x, size_t n, size_t k);
-
 #endif
