@@ -24,4 +24,99 @@ typedef struct bsfit_surface {
   bsfit_allocator alloc;
 } bsfit_surface;
 
+/** Sets s to the empty surface (safe to free, to pass as an output). */
+BSFIT_API void bsfit_surface_init(bsfit_surface *s);
+
+/** Frees what s owns and re-initialises it. NULL-safe, idempotent. */
+BSFIT_API void bsfit_surface_free(bsfit_surface *s);
+
+/** Allocates s's arrays for the given shape (contents zero; weights only if rational).
+** Any previous content of s is freed first. The caller fills the arrays, then should
+** call bsfit_surface_validate. The arrays belong to s and are released by
+** bsfit_surface_free with the allocator a (NULL = realloc/free), kept in s->alloc.
+** @return BSFIT_OK, BSFIT_EDIM (dim outside 1..4), BSFIT_EDEGREE (a degree outside
+**         0..BSFIT_MAX_DEGREE), BSFIT_EINVAL (nu or nv is 0, or the sizes overflow),
+**         BSFIT_ENOMEM. */
+BSFIT_API bsfit_err bsfit_surface_alloc(bsfit_surface *s, int degree_u, int degree_v, int dim,
+                                        size_t nu, size_t nv, int rational,
+                                        const bsfit_allocator *a, bsfit_status *st);
+
+/** Builds a B-spline or NURBS surface by copying the arrays (the caller keeps theirs).
+** @param[in] knots_u  nu+degree_u+1 knots, or NULL for clamped uniform knots on [0,1].
+** @param[in] knots_v  nv+degree_v+1 knots, or NULL likewise.
+** @param[in] ctrl     nu*nv*dim coordinates, row-major over (i, j): point (i, j)
+**                     starts at ctrl[(i*nv + j)*dim] (i runs along u).
+** @param[in] weights  nu*nv positive weights (weights[i*nv + j]), or NULL (polynomial).
+** On error s is left empty.
+** @return BSFIT_OK, BSFIT_EINVAL (ctrl NULL), any code of bsfit_surface_alloc or
+**         bsfit_surface_validate. */
+BSFIT_API bsfit_err bsfit_surface_new(bsfit_surface *s, int degree_u, int degree_v, int dim,
+                                      size_t nu, size_t nv, const double *knots_u,
+                                      const double *knots_v, const double *ctrl,
+                                      const double *weights, const bsfit_allocator *a,
+                                      bsfit_status *st);
+
+/** Builds a (rational) Bézier surface of degrees (nu-1, nv-1) on [0,1]x[0,1]; the
+** arrays are laid out as in bsfit_surface_new. It is evaluated with Bernstein
+** polynomials (NURBS Book A1.3, no division).
+** @return BSFIT_OK, BSFIT_EDEGREE (nu or nv outside 1..BSFIT_MAX_DEGREE+1), or any
+**         code of bsfit_surface_new. */
+BSFIT_API bsfit_err bsfit_surface_new_bezier(bsfit_surface *s, int dim, size_t nu, size_t nv,
+                                             const double *ctrl, const double *weights,
+                                             const bsfit_allocator *a, bsfit_status *st);
+
+/** Checks every invariant of s: both knot vectors (bsfit_knots_validate), finite
+** control points, positive finite weights, Bézier shape.
+** @return BSFIT_OK, BSFIT_EINVAL (empty surface, or a Bézier surface of the wrong
+**         shape), BSFIT_EDIM, BSFIT_EDEGREE, BSFIT_ENKNOTS, BSFIT_EKNOTS_DECR,
+**         BSFIT_EMULT, BSFIT_EDOMAIN, BSFIT_ENONFINITE or BSFIT_EWEIGHT. */
+BSFIT_API bsfit_err bsfit_surface_validate(const bsfit_surface *s, bsfit_status *st);
+
+/** Deep copy of src into dst (dst's previous content is freed; allocator a, or src's
+** if a is NULL). src and dst must differ.
+** @return BSFIT_OK, or a code of bsfit_surface_alloc (BSFIT_ENOMEM). */
+BSFIT_API bsfit_err bsfit_surface_copy(const bsfit_surface *src, bsfit_surface *dst,
+                                       const bsfit_allocator *a, bsfit_status *st);
+
+/** Moves src's arrays into dst (dst freed first), leaving src empty. */
+BSFIT_API void bsfit_surface_move(bsfit_surface *src, bsfit_surface *dst);
+
+/** Domain [ua, ub] x [va, vb] of the surface. Any output pointer may be NULL. */
+BSFIT_API void bsfit_surface_domain(const bsfit_surface *s, double *ua, double *ub, double *va,
+                                    double *vb);
+
+/** Point S(u, v) of a valid surface. (u, v) outside the domain: extrapolated by the
+** end polynomials, as curves are.
+** @param[out] out dim doubles.
+** @return BSFIT_OK or BSFIT_ENONFINITE (u or v not finite). */
+BSFIT_API bsfit_err bsfit_surface_eval(const bsfit_surface *s, double u, double v, double *out,
+                                       bsfit_status *st);
+
+/** Partial derivatives up to order k in each direction (NURBS Book A3.6, and A4.4
+** for rational surfaces, which is why orders above the degree can be non-zero).
+** @param[in]  k   0 <= k <= BSFIT_MAX_DEGREE.
+** @param[out] out (k+1)*(k+1)*dim doubles: d^(a+b) S / du^a dv^b starts at
+**                 out[(a*(k+1) + b)*dim], for a, b = 0..k (out[0..dim-1] is S(u,v)).
+** @return BSFIT_OK, BSFIT_EINVAL (k out of range) or BSFIT_ENONFINITE (u, v). */
+BSFIT_API bsfit_err bsfit_surface_derivs(const bsfit_surface *s, double u, double v, int k,
+                                         double *out, bsfit_status *st);
+
+/** Unit normal (dS/du x dS/dv) / |dS/du x dS/dv| of a 3D surface.
+** @param[out] out 3 doubles.
+** @return BSFIT_OK, BSFIT_EDIM (dim != 3), BSFIT_ENONFINITE (u, v) or
+**         BSFIT_EDEGENERATE (the partial derivatives are parallel or zero there, as at
+**         the pole of a sphere patch; out is then set to zeros). */
+BSFIT_API bsfit_err bsfit_surface_normal(const bsfit_surface *s, double u, double v,
+                                         double *out, bsfit_status *st);
+
+/** Samples a ku x kv grid, equally spaced over the domain, ends included:
+** u_a = ua + (ub-ua) a/(ku-1), v_b likewise. The spans and the v basis are found once
+** per column, and each row contracts the u basis with the control net once, so a
+** point costs O(pv+1) instead of O((pu+1)(pv+1)). Scratch memory comes from s->alloc.
+** @param[out] out ku*kv*dim doubles, row-major: point (a, b) starts at
+**                 out[(a*kv + b)*dim].
+** @return BSFIT_OK, BSFIT_EINVAL (ku or kv below 2, or overflow) or BSFIT_ENOMEM. */
+BSFIT_API bsfit_err bsfit_surface_sample_grid(const bsfit_surface *s, size_t ku, size_t kv,
+                                              double *out, bsfit_status *st);
+
 #endif /* BSFIT_SURFACE_H */
