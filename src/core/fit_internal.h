@@ -1,0 +1,110 @@
+/*
+** fit_internal.h
+** Private helpers shared by param.c, knot_placement.c, fit.c, periodic.c and linalg.c:
+** the LAPACKE wrappers (linalg.c is the only file calling LAPACKE), the fitter's layout
+** and the span-by-span kernels. Not part of the public API.
+*/
+#ifndef BSFIT_FIT_INTERNAL_H
+#define BSFIT_FIT_INTERNAL_H
+
+#include "internal.h"
+
+/* {====================================================================
+** linalg.c: column-major LAPACK wrappers; every `info` goes through bsfit__lapack_status
+** ===================================================================== */
+
+/* Maps a LAPACK(E) info value of `routine` to a bsfit_err (the only place doing so):
+** 0 -> OK; -1010/-1011 (LAPACKE work memory / transpose memory) -> ENOMEM; other < 0 ->
+** ELAPACK "argument %d"; > 0 -> ENOTSPD when `spd` (Cholesky) else ESINGULAR. */
+bsfit_err bsfit__lapack_status(int info, const char *routine, int spd, bsfit_status *st);
+
+/* Symmetric positive definite band, lower storage AB[(i-j) + j*ldab], ldab >= kd+1. */
+bsfit_err bsfit__pb_factor(size_t n, int kd, double *ab, size_t ldab, bsfit_status *st);
+bsfit_err bsfit__pb_solve(size_t n, int kd, const double *ab, size_t ldab, size_t nrhs,
+                          double *b, size_t ldb, bsfit_status *st);
+/* Reciprocal 1-norm condition estimate of the factored band given the original 1-norm
+** (dlacn2 + dpbtrs, O(n kd) per step); work: 2n doubles, iwork: n ints. 0 on failure. */
+double bsfit__pb_rcond(size_t n, int kd, const double *ab, size_t ldab, double anorm,
+                       double *work, int *iwork);
+/* Dense symmetric positive definite, lower, column-major. */
+bsfit_err bsfit__po_factor(size_t n, double *a, size_t lda, bsfit_status *st);
+bsfit_err bsfit__po_solve(size_t n, const double *a, size_t lda, size_t nrhs, double *b,
+                          size_t ldb, bsfit_status *st);
+double bsfit__po_rcond(size_t n, const double *a, size_t lda, double anorm, double *work,
+                       int *iwork);
+/* General band LU solve (dgbsv): ab has ldab >= 2kl+ku+1 rows, the matrix in rows kl..;
+** ipiv: n ints. */
+bsfit_err bsfit__gb_solve(size_t n, int kl, int ku, double *ab, size_t ldab, int *ipiv,
+                          size_t nrhs, double *b, size_t ldb, bsfit_status *st);
+
+/* }==================================================================== */
+
+/* {====================================================================
+** knot_placement.c
+** ===================================================================== */
+
+/* Number of spans [T[k], T[k+1]) (k = 0..K-1) of positive length holding no parameter of
+** the sorted u; `periodic`: parameters taken modulo T[K]-T[0]; otherwise the last span is
+** closed on the right. *first receives the first empty k (when the count is > 0). */
+size_t bsfit__count_empty(const double *T, size_t K, const double *u, size_t m, int periodic,
+                          size_t *first);
+
+/* }==================================================================== */
+
+/* {====================================================================
+** fit.c / periodic.c: the fitter
+** ===================================================================== */
+
+struct bsfit_fitter {
+  bsfit_allocator alloc;
+  /* settings */
+  int p, periodic, fix_ends, has_t0, has_t1, tangent_dim, user_knots;
+  bsfit_knot_rule rule;
+  size_t count; /* n (open) or N (periodic) */
+  double t0[4], t1[4];
+  /* sizes */
+  size_t nraw;  /* stored control points: n, or N + p */
+  size_t nk;    /* nraw + p + 1 knots */
+  size_t tri;   /* p(p+1)/2 reciprocal knot differences per span */
+  int fitted;   /* knots hold the last fit's vector */
+  /* workspace: one block */
+  void *block;
+  size_t block_size;
+  double *U;      /* nk knots */
+  double *period; /* N+1 (periodic) */
+  double *inv;    /* (nraw - p) * tri */
+  double *band;   /* (p+1) * nraw, lower band storage */
+  double *rhs;    /* nraw * 4, column-major (coordinate k at rhs + k*nraw) */
+  double *work;   /* 3 * nraw */
+  double *a11;    /* periodic: (p+1) * (N-p) */
+  double *a12;    /* periodic: (N-p) * p */
+  double *y;      /* periodic: (N-p) * p */
+  double *s22;    /* periodic: p * p */
+  double *r2;     /* periodic: N * 4 folded right-hand sides */
+  int *iwork;     /* nraw */
+  unsigned char *occ; /* nraw spans touched by data */
+};
+
+/* Accumulated per-fit sums of the assembly pass. */
+typedef struct bsfit__asm_sums {
+  double bad;  /* NaN when a coordinate, parameter or weight was not finite */
+  double spread; /* sum of |Q_k - Q_0| coordinates: 0 iff all points coincide */
+  int badw;    /* a weight was <= 0 or NaN */
+} bsfit__asm_sums;
+
+/* Reciprocal knot differences of every span (0 for zero differences). */
+void bsfit__fit_inverses(bsfit_fitter *f);
+/* Assembly pass: band, rhs (raw unknowns), occupancy, validation sums. */
+void bsfit__fit_assemble(bsfit_fitter *f, const double *pts, size_t m, int dim, const double *u,
+                         const double *w, bsfit__asm_sums *sums);
+/* periodic.c: folds the raw system and solves it; writes the N distinct control points,
+** row-major, into ctrl; *rcond when rcond != NULL. */
+bsfit_err bsfit__periodic_solve(bsfit_fitter *f, int dim, double *ctrl, double *rcond,
+                                bsfit_status *st);
+/* 1-norm of the symmetric band (lower storage) restricted to rows/columns lo..hi. */
+double bsfit__band_norm1(const double *ab, size_t ldab, int kd, size_t lo, size_t hi,
+                         double *colsum);
+
+/* }==================================================================== */
+
+#endif
