@@ -226,7 +226,8 @@ BSFIT_API void bsfit_curve_init(bsfit_curve *c);
 BSFIT_API void bsfit_curve_free(bsfit_curve *c);
 
 /** Allocates c's arrays for the given shape (contents zero; knots unset, weights
-** only if rational). Any previous content of c is freed first. The caller fills the
+** only if rational). Any previous content of c is freed first, so c MUST be
+** initialised (bsfit_curve_init) or hold a curve: an uninitialised struct crashes. The caller fills the
 ** arrays, then should call bsfit_curve_validate.
 ** @return BSFIT_OK, BSFIT_EDIM, BSFIT_EDEGREE, BSFIT_EINVAL (n == 0 or overflow), BSFIT_ENOMEM. */
 BSFIT_API bsfit_err bsfit_curve_alloc(bsfit_curve *c, int degree, int dim, size_t n,
@@ -238,6 +239,7 @@ BSFIT_API bsfit_err bsfit_curve_alloc(bsfit_curve *c, int degree, int dim, size_
 ** @param[in] weights  n positive weights, or NULL (polynomial).
 ** @param[in] periodic 0, or 1 if the arrays are already in expanded periodic form
 **                     (checked: the last p points repeat the first p, spans repeat).
+** c must be initialised (bsfit_curve_init) or hold a curve, which is freed first.
 ** On error c is left empty.
 ** @return BSFIT_OK or any code of bsfit_curve_validate, BSFIT_ENOMEM. */
 BSFIT_API bsfit_err bsfit_curve_new(bsfit_curve *c, int degree, int dim, size_t n,

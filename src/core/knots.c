@@ -130,9 +130,11 @@ bsfit_err bsfit_knots_periodic(int p, size_t N, const double *period, double *U,
   if (!(T > 0)) return bsfit__fail(st, BSFIT_EDOMAIN, "periodic knots span an empty period");
   for (i = 0; i <= N; i++) U[(size_t)p + i] = period[i];
   for (i = 0; i < (size_t)p; i++) {
-    /* spans before the period repeat its last spans; spans after repeat its first */
-    U[(size_t)p - 1 - i] = period[N - 1 - i] - T;
-    U[(size_t)p + N + 1 + i] = period[1 + i] + T;
+    /* spans before the period repeat its last spans; spans after repeat its first.
+    ** Measured from the period's ends (not t[i] +- T) so rounding cannot put a
+    ** shifted knot on the wrong side of an end knot. */
+    U[(size_t)p - 1 - i] = period[0] - (period[N] - period[N - 1 - i]);
+    U[(size_t)p + N + 1 + i] = period[N] + (period[1 + i] - period[0]);
   }
   return bsfit__ok(st);
 }

@@ -1,0 +1,269 @@
+/*
+** curve_geom.c
+** Geometry on a curve: arc length (Gauss-Legendre per span, subdivided until two
+** estimates agree), closest point (coarse sampling, then a Newton descent on
+** f(u) = C'(u).(C(u) - P) that never lets the distance grow), projection of many points
+** from given starting parameters, and uniform sampling.
+*/
+#include "curve_ops_internal.h"
+
+#include <math.h>
+#include <string.h>
+
+#define GL_ORDER 16         /* Gauss-Legendre points per interval */
+#define LEN_RTOL 1e-12      /* relative agreement of two length estimates */
+#define LEN_MAX_DEPTH 12    /* at most 2^12 sub-intervals per span */
+#define CLOSEST_SAMPLES 8   /* coarse samples per span */
+#define NEWTON_MAX_ITERS 60 /* closest point: Newton steps */
+#define HALVINGS 30         /* step halvings before a Newton step is given up */
+
+/* {====================================================================
+** Arc length
+** ===================================================================== */
+
+/* Nodes x and weights w of the n-point Gauss-Legendre rule on [-1, 1], by Newton's
+** method on the Legendre polynomial (computed per call: no static state). */
+static void gauss_legendre(int n, double *x, double *w) {
+  int i, j, it;
+  for (i = 0; i < (n + 1) / 2; i++) {
+    double z = cos(3.14159265358979323846 * ((double)i + 0.75) / ((double)n + 0.5)), dp = 1.0;
+    for (it = 0; it < 100; it++) {
+      double p0 = 1.0, p1 = z, dz;
+      for (j = 2; j <= n; j++) {
+        double p2 = ((2.0 * j - 1.0) * z * p1 - (j - 1.0) * p0) / (double)j;
+        p0 = p1;
+        p1 = p2;
+      }
+      dp = (double)n * (z * p1 - p0) / (z * z - 1.0);
+      dz = p1 / dp;
+      z -= dz;
+      if (fabs(dz) <= 1e-16) break;
+    }
+    x[i] = -z;
+    x[n - 1 - i] = z;
+    w[i] = w[n - 1 - i] = 2.0 / ((1.0 - z * z) * dp * dp);
+  }
+}
+
+typedef struct len_ctx {
+  const bsfit_curve *c;
+  size_t s; /* the span being integrated */
+  double x[GL_ORDER], w[GL_ORDER];
+} len_ctx;
+
+static double speed(const len_ctx *L, double u) {
+  double D[2 * 4], v = 0.0;
+  size_t q, d = (size_t)L->c->dim;
+  bsfit__curve_derivs_span(L->c, L->s, u, 1, D);
+  for (q = 0; q < d; q++) v += D[d + q] * D[d + q];
+  return sqrt(v);
+}
+
+static double gl_integral(const len_ctx *L, double lo, double hi) {
+  double h = 0.5 * (hi - lo), mid = 0.5 * (hi + lo), sum = 0.0;
+  int i;
+  for (i = 0; i < GL_ORDER; i++) sum += L->w[i] * speed(L, mid + h * L->x[i]);
+  return h * sum;
+}
+
+static double adaptive_length(const len_ctx *L, double lo, double hi, double whole, int depth) {
+  double mid = 0.5 * (lo + hi), left = gl_integral(L, lo, mid), right = gl_integral(L, mid, hi);
+  double both = left + right;
+  if (depth >= LEN_MAX_DEPTH || fabs(both - whole) <= LEN_RTOL * fabs(both)) return both;
+  return adaptive_length(L, lo, mid, left, depth + 1) +
+         adaptive_length(L, mid, hi, right, depth + 1);
+}
+
+bsfit_err bsfit_curve_length(const bsfit_curve *c, double a, double b, double *len,
+                             bsfit_status *st) {
+  len_ctx L;
+  double da, db, total = 0.0;
+  size_t s;
+  bsfit_err e = bsfit_curve_validate(c, st);
+  if (e != BSFIT_OK) return e;
+  if (len == NULL) return bsfit__fail(st, BSFIT_EINVAL, "no output for the length");
+  if (!isfinite(a) || !isfinite(b))
+    return bsfit__fail(st, BSFIT_ENONFINITE, "length interval [%g, %g] is not finite", a, b);
+  bsfit_curve_domain(c, &da, &db);
+  if (a > b || a < da || b > db)
+    return bsfit__fail(st, BSFIT_EDOMAIN, "length interval [%g, %g] not an interval of [%g, %g]",
+                       a, b, da, db);
+  L.c = c;
+  gauss_legendre(GL_ORDER, L.x, L.w);
+  for (s = (size_t)c->degree; s < c->n; s++) {
+    double lo = fmax(a, c->knots[s]), hi = fmin(b, c->knots[s + 1]);
+    if (!(lo < hi)) continue;
+    L.s = s;
+    total += adaptive_length(&L, lo, hi, gl_integral(&L, lo, hi), 0);
+  }
+  *len = total;
+  return bsfit__ok(st);
+}
+
+/* }==================================================================== */
+
+/* {====================================================================
+** Closest point and projection
+** ===================================================================== */
+
+/* Where a parameter may go: [lo, hi], clamped for open curves; periodic curves are
+** evaluated at any u (wrapped) and only the final answer is wrapped. */
+typedef struct foot_ctx {
+  const bsfit_curve *c;
+  const double *P;
+  double lo, hi;
+} foot_ctx;
+
+/* C, C', C'' at u (D: 3*dim) and |C(u) - P|^2. */
+static double foot_eval(const foot_ctx *F, double u, double *D) {
+  const bsfit_curve *c = F->c;
+  size_t q, d = (size_t)c->dim, s;
+  double w = bsfit__curve_wrap(c, u), d2 = 0.0;
+  s = bsfit_knots_find_span(c->knots, c->n, c->degree, w);
+  bsfit__curve_derivs_span(c, s, w, 2, D);
+  for (q = 0; q < d; q++) d2 += (D[q] - F->P[q]) * (D[q] - F->P[q]);
+  return d2;
+}
+
+static double clampd(double u, double lo, double hi) { return u < lo ? lo : (u > hi ? hi : u); }
+
+/* g(u) = C'.(C - P) from D = (C, C', C'') */
+static double slope(const foot_ctx *F, const double *D) {
+  size_t q, d = (size_t)F->c->dim;
+  double g = 0.0;
+  for (q = 0; q < d; q++) g += D[d + q] * (D[q] - F->P[q]);
+  return g;
+}
+
+/* Newton on g(u) = C'.(C-P), g' = C''.(C-P) + |C'|^2, inside [lo, hi]; a step that
+** would increase the distance is halved until it does not, so the result is never
+** worse than the start. Returns the parameter, *d2 its squared distance. */
+static double foot_newton(const foot_ctx *F, double u, int iters, double *d2) {
+  double D[3 * 4], cur = foot_eval(F, u, D), scale = F->hi - F->lo;
+  size_t q, d = (size_t)F->c->dim;
+  int it, k;
+  for (it = 0; it < iters; it++) {
+    double g = 0.0, gp = 0.0, step, un = u, dn = cur, Dn[3 * 4];
+    for (q = 0; q < d; q++) {
+      double r = D[q] - F->P[q];
+      g += D[d + q] * r;
+      gp += D[2 * d + q] * r + D[d + q] * D[d + q];
+    }
+    if (g == 0.0) break;
+    /* where g' <= 0 Newton points the wrong way: walk downhill instead */
+    step = gp > 0.0 ? -g / gp : (g > 0.0 ? -0.05 : 0.05) * scale;
+    for (k = 0; k <= HALVINGS; k++, step *= 0.5) {
+      un = clampd(u + step, F->lo, F->hi);
+      dn = foot_eval(F, un, Dn);
+      /* near the foot the distance changes below its rounding: there a step that
+      ** shrinks |g| is taken as long as the distance stays level */
+      if (dn <= cur || (dn <= cur * (1.0 + 1e-12) && fabs(slope(F, Dn)) < 0.5 * fabs(g))) break;
+    }
+    if (k > HALVINGS || un == u) break;
+    memcpy(D, Dn, sizeof D);
+    cur = dn;
+    if (fabs(un - u) <= 1e-15 * (fabs(u) + scale)) {
+      u = un;
+      break;
+    }
+    u = un;
+  }
+  *d2 = cur;
+  return u;
+}
+
+bsfit_err bsfit_curve_closest(const bsfit_curve *c, const double *P, double *u, double *dist,
+                              bsfit_status *st) {
+  foot_ctx F;
+  double a, b, D[3 * 4], best = INFINITY, ubest = 0.0, d2;
+  size_t s, i, p;
+  bsfit_err e = bsfit_curve_validate(c, st);
+  if (e != BSFIT_OK) return e;
+  if (P == NULL || u == NULL) return bsfit__fail(st, BSFIT_EINVAL, "no point or no output");
+  if (!bsfit__all_finite(P, (size_t)c->dim))
+    return bsfit__fail(st, BSFIT_ENONFINITE, "point P is not finite");
+  bsfit_curve_domain(c, &a, &b);
+  p = (size_t)c->degree;
+  F.c = c;
+  F.P = P;
+  F.lo = a;
+  F.hi = b;
+  /* coarse samples, then a bracket of one sample step either side of the best */
+  for (s = p; s < c->n; s++) {
+    double h = (c->knots[s + 1] - c->knots[s]) / CLOSEST_SAMPLES;
+    for (i = 0; h > 0 && i <= CLOSEST_SAMPLES; i++) {
+      double v = c->knots[s] + h * (double)i, dv = foot_eval(&F, v, D);
+      if (dv < best) {
+        best = dv;
+        ubest = v;
+        F.lo = v - h;
+        F.hi = v + h;
+      }
+    }
+  }
+  if (!c->periodic) {
+    F.lo = fmax(F.lo, a);
+    F.hi = fmin(F.hi, b);
+  }
+  ubest = foot_newton(&F, ubest, NEWTON_MAX_ITERS, &d2);
+  *u = bsfit__curve_wrap(c, ubest);
+  if (dist) *dist = sqrt(d2);
+  return bsfit__ok(st);
+}
+
+bsfit_err bsfit_curve_project_many(const bsfit_curve *c, const double *pts, size_t m, double *u,
+                                   double *dist, int iters, bsfit_status *st) {
+  foot_ctx F;
+  double a, b, d2;
+  size_t i, d;
+  bsfit_err e = bsfit__curve_check(c, st);
+  if (e != BSFIT_OK) return e;
+  if (m > 0 && (pts == NULL || u == NULL))
+    return bsfit__fail(st, BSFIT_EINVAL, "no points or no parameters");
+  if (iters < 0) return bsfit__fail(st, BSFIT_EINVAL, "iterations = %d is negative", iters);
+  d = (size_t)c->dim;
+  bsfit_curve_domain(c, &a, &b);
+  F.c = c;
+  for (i = 0; i < m; i++) {
+    if (!bsfit__all_finite(pts + i * d, d) || !isfinite(u[i]))
+      return bsfit__fail(st, BSFIT_ENONFINITE, "point %zu or its parameter is not finite", i);
+    F.P = pts + i * d;
+    /* open: the domain; periodic: one period either side (wrapped at the end) */
+    F.lo = c->periodic ? u[i] - (b - a) : a;
+    F.hi = c->periodic ? u[i] + (b - a) : b;
+    u[i] = bsfit__curve_wrap(c, foot_newton(&F, clampd(u[i], F.lo, F.hi), iters, &d2));
+    if (dist) dist[i] = sqrt(d2);
+  }
+  return bsfit__ok(st);
+}
+
+/* }==================================================================== */
+
+/* {====================================================================
+** Sampling
+** ===================================================================== */
+
+bsfit_err bsfit_curve_sample(const bsfit_curve *c, size_t k, double *out, bsfit_status *st) {
+  double ub[256], a, b, steps;
+  size_t i, j, d;
+  bsfit_err e = bsfit__curve_check(c, st);
+  if (e != BSFIT_OK) return e;
+  if (k < 2) return bsfit__fail(st, BSFIT_EINVAL, "sampling needs k >= 2 points, got %zu", k);
+  if (out == NULL) return bsfit__fail(st, BSFIT_EINVAL, "no output array");
+  d = (size_t)c->dim;
+  bsfit_curve_domain(c, &a, &b);
+  steps = c->periodic ? (double)k : (double)(k - 1);
+  /* in chunks through the batch evaluator: no allocation */
+  for (i = 0; i < k; i += j) {
+    size_t nb = k - i < 256 ? k - i : 256;
+    for (j = 0; j < nb; j++) {
+      size_t idx = i + j;
+      ub[j] = (!c->periodic && idx == k - 1) ? b : a + (b - a) * ((double)idx / steps);
+    }
+    e = bsfit_curve_eval_many(c, ub, nb, out + i * d, st);
+    if (e != BSFIT_OK) return e;
+  }
+  return bsfit__ok(st);
+}
+
+/* }==================================================================== */

@@ -1,0 +1,246 @@
+/*
+** curve_hcurve.c
+** The working form of the curve operations (see curve_ops_internal.h): conversion to and
+** from homogeneous control points, unrolling a periodic curve over three periods, knot
+** refinement (NURBS Book A5.4), extraction of a clamped piece, and re-assembly of the
+** expanded periodic form.
+*/
+#include "curve_ops_internal.h"
+
+#include <math.h>
+#include <string.h>
+
+/* {====================================================================
+** Life cycle
+** ===================================================================== */
+
+void bsfit__hc_init(bsfit__hcurve *h) { memset(h, 0, sizeof *h); }
+
+static size_t hc_nknots(const bsfit__hcurve *h) { return h->n + (size_t)h->p + 1; }
+
+void bsfit__hc_free(bsfit__hcurve *h) {
+  if (h == NULL) return;
+  bsfit__free(&h->alloc, h->U, hc_nknots(h) * sizeof(double));
+  bsfit__free(&h->alloc, h->P, h->n * (size_t)h->hd * sizeof(double));
+  bsfit__hc_init(h);
+}
+
+bsfit_err bsfit__hc_alloc(bsfit__hcurve *h, int p, int hd, size_t n, const bsfit_allocator *a,
+                          bsfit_status *st) {
+  size_t nk = n + (size_t)p + 1, np = bsfit__mulsize(n, (size_t)hd * sizeof(double));
+  bsfit__hc_init(h);
+  if (np == 0 || bsfit__mulsize(nk, sizeof(double)) == 0)
+    return bsfit__fail(st, BSFIT_EINVAL, "curve of %zu control points is too large", n);
+  if (a != NULL) h->alloc = *a;
+  h->p = p;
+  h->hd = hd;
+  h->n = n;
+  h->U = bsfit__alloc(&h->alloc, nk * sizeof(double));
+  h->P = bsfit__alloc(&h->alloc, np);
+  if (h->U == NULL || h->P == NULL) {
+    bsfit__hc_free(h);
+    return bsfit__fail(st, BSFIT_ENOMEM, "out of memory for %zu control points", n);
+  }
+  return BSFIT_OK;
+}
+
+/* Control point i of c in homogeneous coordinates (or as is when polynomial). */
+static void load_point(const bsfit_curve *c, size_t i, double *q) {
+  size_t k, d = (size_t)c->dim;
+  double w = c->weights ? c->weights[i] : 1.0;
+  for (k = 0; k < d; k++) q[k] = w * c->ctrl[i * d + k];
+  if (c->weights) q[d] = w;
+}
+
+bsfit_err bsfit__hc_from_curve(const bsfit_curve *c, bsfit__hcurve *h, bsfit_status *st) {
+  size_t i, hd = (size_t)c->dim + (c->weights != NULL);
+  bsfit_err e = bsfit__hc_alloc(h, c->degree, (int)hd, c->n, &c->alloc, st);
+  if (e != BSFIT_OK) return e;
+  memcpy(h->U, c->knots, hc_nknots(h) * sizeof(double));
+  for (i = 0; i < c->n; i++) load_point(c, i, h->P + i * hd);
+  return BSFIT_OK;
+}
+
+bsfit_err bsfit__hc_unroll(const bsfit_curve *c, bsfit__hcurve *h, bsfit_status *st) {
+  size_t p = (size_t)c->degree, N = c->n - p, hd = (size_t)c->dim + (c->weights != NULL);
+  size_t j, nk = c->n + p + 1; /* = N + 2p + 1 stored knots */
+  double T = c->knots[N + p] - c->knots[p];
+  bsfit_err e = bsfit__hc_alloc(h, c->degree, (int)hd, 3 * N + p, &c->alloc, st);
+  if (e != BSFIT_OK) return e;
+  /* control point j of the unrolled curve is P[(j - N) mod N] */
+  for (j = 0; j < h->n; j++) load_point(c, j % N, h->P + j * hd);
+  /* knots: one period shifted down, the stored knots, one period shifted up */
+  for (j = 0; j < hc_nknots(h); j++) {
+    double v;
+    if (j < N) v = c->knots[j] - T;
+    else if (j - N < nk) v = c->knots[j - N];
+    else v = c->knots[j - 2 * N] + T;
+    /* spans repeat only up to the validator's tolerance: keep the vector sorted */
+    h->U[j] = (j > 0 && v < h->U[j - 1]) ? h->U[j - 1] : v;
+  }
+  return BSFIT_OK;
+}
+
+/* }==================================================================== */
+
+/* {====================================================================
+** Refinement and pieces
+** ===================================================================== */
+
+static void axpby(double *dst, double alpha, const double *x, double beta, const double *y,
+                  size_t hd) {
+  size_t k;
+  for (k = 0; k < hd; k++) dst[k] = alpha * x[k] + beta * y[k];
+}
+
+bsfit_err bsfit__hc_refine(const bsfit__hcurve *h, const double *X, size_t nx,
+                           bsfit__hcurve *out, bsfit_status *st) {
+  size_t n = h->n, p = (size_t)h->p, hd = (size_t)h->hd, m = n + p, a, b, i, k, j, l;
+  const double *U = h->U, *P = h->P;
+  double *Ub, *Q;
+  bsfit_err e = bsfit__hc_alloc(out, h->p, h->hd, n + nx, &h->alloc, st);
+  if (e != BSFIT_OK) return e;
+  Ub = out->U;
+  Q = out->P;
+  if (nx == 0) {
+    memcpy(Ub, U, (m + 1) * sizeof(double));
+    memcpy(Q, P, n * hd * sizeof(double));
+    return BSFIT_OK;
+  }
+  /* NURBS Book A5.4 with the book's last index n-1 and r = nx-1 */
+  a = bsfit_knots_find_span(U, n, h->p, X[0]);
+  b = bsfit_knots_find_span(U, n, h->p, X[nx - 1]) + 1;
+  memcpy(Q, P, (a - p + 1) * hd * sizeof(double));
+  memcpy(Q + (b - 1 + nx) * hd, P + (b - 1) * hd, (n - b + 1) * hd * sizeof(double));
+  memcpy(Ub, U, (a + 1) * sizeof(double));
+  memcpy(Ub + b + p + nx, U + b + p, (m - b - p + 1) * sizeof(double));
+  i = b + p - 1;
+  k = b + p + nx - 1;
+  for (j = nx; j-- > 0;) {
+    double x = X[j];
+    while (x <= U[i] && i > a) {
+      memcpy(Q + (k - p - 1) * hd, P + (i - p - 1) * hd, hd * sizeof(double));
+      Ub[k] = U[i];
+      k--;
+      i--;
+    }
+    memcpy(Q + (k - p - 1) * hd, Q + (k - p) * hd, hd * sizeof(double));
+    for (l = 1; l <= p; l++) {
+      size_t ind = k - p + l;
+      double alpha = Ub[k + l] - x;
+      if (alpha == 0.0) {
+        memcpy(Q + (ind - 1) * hd, Q + ind * hd, hd * sizeof(double));
+      } else {
+        alpha /= Ub[k + l] - U[i - p + l];
+        axpby(Q + (ind - 1) * hd, alpha, Q + (ind - 1) * hd, 1.0 - alpha, Q + ind * hd, hd);
+      }
+    }
+    Ub[k] = x;
+    k--;
+  }
+  return BSFIT_OK;
+}
+
+bsfit_err bsfit__hc_piece(const bsfit__hcurve *h, double lo, double hi, bsfit__hcurve *out,
+                          bsfit_status *st) {
+  size_t p = (size_t)h->p, hd = (size_t)h->hd, nk, i, f, g, nlo, nhi, nx = 0, np;
+  int slo = bsfit_knots_multiplicity(h->U, hc_nknots(h), lo);
+  int shi = bsfit_knots_multiplicity(h->U, hc_nknots(h), hi);
+  double X[2 * BSFIT_MAX_DEGREE];
+  bsfit__hcurve R;
+  bsfit_err e;
+  /* raise both ends to multiplicity p: the control points there are C(lo), C(hi) */
+  nlo = slo < h->p ? p - (size_t)slo : 0;
+  nhi = shi < h->p ? p - (size_t)shi : 0;
+  for (i = 0; i < nlo; i++) X[nx++] = lo;
+  for (i = 0; i < nhi; i++) X[nx++] = hi;
+  e = bsfit__hc_refine(h, X, nx, &R, st);
+  if (e != BSFIT_OK) return e;
+  nk = hc_nknots(&R);
+  for (f = 0; f + 1 < nk && R.U[f + 1] <= lo; f++) {}
+  for (g = f + 1; g < nk && R.U[g] < hi; g++) {}
+  /* knots [lo]*(p+1), R.U[f+1 .. g-1], [hi]*(p+1); control points R.P[f-p .. g-1] */
+  np = g - f + p;
+  e = bsfit__hc_alloc(out, h->p, h->hd, np, &h->alloc, st);
+  if (e == BSFIT_OK) {
+    for (i = 0; i <= p; i++) {
+      out->U[i] = lo;
+      out->U[np + i] = hi;
+    }
+    memcpy(out->U + p + 1, R.U + f + 1, (g - f - 1) * sizeof(double));
+    memcpy(out->P, R.P + (f - p) * hd, np * hd * sizeof(double));
+  }
+  bsfit__hc_free(&R);
+  return e;
+}
+
+/* }==================================================================== */
+
+/* {====================================================================
+** Back to curves
+** ===================================================================== */
+
+/* Cartesian point and weight from a homogeneous one. */
+static void store_point(const bsfit__hcurve *h, size_t src, size_t i, int dim, bsfit_curve *c) {
+  size_t k, d = (size_t)dim;
+  const double *q = h->P + src * (size_t)h->hd;
+  if (c->weights == NULL) {
+    memcpy(c->ctrl + i * d, q, d * sizeof(double));
+    return;
+  }
+  c->weights[i] = q[d];
+  for (k = 0; k < d; k++) c->ctrl[i * d + k] = q[k] / q[d];
+}
+
+bsfit_err bsfit__hc_to_curve(const bsfit__hcurve *h, int dim, bsfit_curve *out,
+                             bsfit_status *st) {
+  size_t i;
+  bsfit_err e = bsfit_curve_alloc(out, h->p, dim, h->n, h->hd > dim, &h->alloc, st);
+  if (e != BSFIT_OK) return e;
+  memcpy(out->knots, h->U, hc_nknots(h) * sizeof(double));
+  for (i = 0; i < h->n; i++) store_point(h, i, i, dim, out);
+  return BSFIT_OK;
+}
+
+/* Offset o with h->U[o + j] == V[j] (to tol) for all j < nv, or SIZE_MAX. */
+static size_t find_run(const bsfit__hcurve *h, const double *V, size_t nv, double tol) {
+  size_t o, j, nk = hc_nknots(h);
+  for (o = 0; o + nv <= nk; o++) {
+    for (j = 0; j < nv && fabs(h->U[o + j] - V[j]) <= tol; j++) {}
+    if (j == nv) return o;
+  }
+  return (size_t)-1;
+}
+
+bsfit_err bsfit__hc_to_periodic(const bsfit__hcurve *h, int dim, const double *t, size_t N,
+                                bsfit_curve *out, bsfit_status *st) {
+  size_t p = (size_t)h->p, d = (size_t)dim, o, i;
+  double tol = 1e-10 * (fabs(t[0]) + fabs(t[N]) + (t[N] - t[0]));
+  bsfit_curve tmp;
+  bsfit_err e;
+  bsfit_curve_init(&tmp);
+  e = bsfit_curve_alloc(&tmp, h->p, dim, N + p, h->hd > dim, &h->alloc, st);
+  if (e == BSFIT_OK) e = bsfit_knots_periodic(h->p, N, t, tmp.knots, st);
+  if (e != BSFIT_OK) {
+    bsfit_curve_free(&tmp);
+    return e;
+  }
+  /* bsfit_knots_periodic shifts by T = t[N] - t[0]; t[0] + T may round below t[N], which
+  ** would make a repeated seam knot decrease by an ulp: keep the vector sorted */
+  for (i = 1; i < N + 2 * p + 1; i++)
+    if (tmp.knots[i] < tmp.knots[i - 1]) tmp.knots[i] = tmp.knots[i - 1];
+  o = find_run(h, tmp.knots, N + 2 * p + 1, tol);
+  if (o == (size_t)-1 || o + N + p > h->n) {
+    bsfit_curve_free(&tmp);
+    return bsfit__fail(st, BSFIT_ENOTPERIODIC, "periodic knots of the result not found");
+  }
+  for (i = 0; i < N + p; i++) store_point(h, o + i, i, dim, &tmp);
+  /* the wrapped points equal their originals exactly, as the periodic form requires */
+  memcpy(tmp.ctrl + N * d, tmp.ctrl, p * d * sizeof(double));
+  if (tmp.weights) memcpy(tmp.weights + N, tmp.weights, p * sizeof(double));
+  tmp.periodic = 1;
+  bsfit_curve_move(&tmp, out);
+  return BSFIT_OK;
+}
+
+/* }==================================================================== */

@@ -1,0 +1,55 @@
+/*
+** curve_ops_internal.h
+** The working form shared by the curve operations (curve_ops.c, curve_elevate.c,
+** curve_eval.c, curve_geom.c): a bare knot vector and control points in homogeneous
+** coordinates, so that one algorithm serves polynomial and rational curves alike.
+** Not part of the public API.
+*/
+#ifndef BSFIT_CURVE_OPS_INTERNAL_H
+#define BSFIT_CURVE_OPS_INTERNAL_H
+
+#include "internal.h"
+
+/* A curve reduced to what the knot algorithms touch. */
+typedef struct bsfit__hcurve {
+  int p;                 /* degree */
+  int hd;                /* doubles per control point: dim, or dim+1 when rational */
+  size_t n;              /* number of control points */
+  double *U;             /* n+p+1 knots */
+  double *P;             /* n*hd coordinates; rational: (w x, w y, ..., w) */
+  bsfit_allocator alloc; /* what U and P were allocated with */
+} bsfit__hcurve;
+
+void bsfit__hc_init(bsfit__hcurve *h);
+void bsfit__hc_free(bsfit__hcurve *h);
+/* Allocates h's arrays (contents unset) with allocator a (copied). */
+bsfit_err bsfit__hc_alloc(bsfit__hcurve *h, int p, int hd, size_t n, const bsfit_allocator *a,
+                          bsfit_status *st);
+/* The stored arrays of c, as they are (periodic curves: the expanded form). */
+bsfit_err bsfit__hc_from_curve(const bsfit_curve *c, bsfit__hcurve *h, bsfit_status *st);
+/* A periodic curve unrolled over three periods (one before, one after the domain), as an
+** open curve with domain [a - T, b + T]: the middle period's knots are c's own. */
+bsfit_err bsfit__hc_unroll(const bsfit_curve *c, bsfit__hcurve *h, bsfit_status *st);
+/* Knot refinement (A5.4): X sorted, within h's domain, multiplicities already checked. */
+bsfit_err bsfit__hc_refine(const bsfit__hcurve *h, const double *X, size_t nx,
+                           bsfit__hcurve *out, bsfit_status *st);
+/* The part of h over [lo, hi] (lo < hi within the domain) as a clamped curve. */
+bsfit_err bsfit__hc_piece(const bsfit__hcurve *h, double lo, double hi, bsfit__hcurve *out,
+                          bsfit_status *st);
+/* Builds a curve of dimension dim (rational when h is homogeneous) from h's arrays. */
+bsfit_err bsfit__hc_to_curve(const bsfit__hcurve *h, int dim, bsfit_curve *out,
+                             bsfit_status *st);
+/* Builds the expanded periodic curve whose period knots are t[0..N] from an unrolled
+** curve h that holds it as a contiguous part (found by matching the knots). */
+bsfit_err bsfit__hc_to_periodic(const bsfit__hcurve *h, int dim, const double *t, size_t N,
+                                bsfit_curve *out, bsfit_status *st);
+
+/* curve_eval.c: C and its derivatives up to order k <= BSFIT_MAX_DEGREE at u in span s of
+** a valid curve (u already wrapped), no checks. out: (k+1)*dim doubles. */
+void bsfit__curve_derivs_span(const bsfit_curve *c, size_t s, double u, int k, double *out);
+
+/* Cheap O(1) checks of a curve handed to an operation: not NULL, arrays present,
+** degree and dimension in range. The full O(n) check is bsfit_curve_validate. */
+bsfit_err bsfit__curve_check(const bsfit_curve *c, bsfit_status *st);
+
+#endif
