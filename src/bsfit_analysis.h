@@ -72,4 +72,46 @@ BSFIT_API bsfit_err bsfit_corners_detect(const double *pts, size_t m, int dim,
                                          double *angles, size_t cap, size_t *count,
                                          bsfit_status *st);
 
+/** Parameters that down-weighted points cannot distort.
+**
+** A point is trusted when its weight is at least `trust` times the median weight (so at
+** least half the points always are: the median resists a few huge weights). The
+** parameters (kind as in bsfit_params) are computed over the trusted points only, so an
+** outlier does not stretch the chords of its neighbours; an untrusted point gets the
+** parameter interpolated linearly, by index, between its trusted neighbours. With w
+** NULL (or every point trusted) the result equals bsfit_params. Closed data: the
+** result is shifted so that ū_0 = 0 and it stays non-decreasing in [0, 1).
+**
+** @param[in]  w      m positive weights, or NULL.
+** @param[in]  trust  fraction of the median weight, in [0, 1) (0: every point trusted).
+** @param[out] u      m parameters.
+** @return BSFIT_OK, the codes of bsfit_params, BSFIT_EWEIGHT (a weight <= 0 or not
+**         finite), BSFIT_EINVAL (trust out of range), BSFIT_EDEGENERATE (fewer than
+**         two trusted points), BSFIT_ENOMEM. */
+BSFIT_API bsfit_err bsfit_params_trusted(const double *pts, size_t m, int dim,
+                                         bsfit_param_kind kind, int closed, const double *w,
+                                         double trust, double *u, bsfit_status *st);
+
+/** One period of knots for a closed fit with C0 breaks (corners).
+**
+** The parameters u (closed, non-decreasing in [0, 1), as from bsfit_params) are cut at
+** the corner points `breaks` (point indices, increasing). The period starts at the first
+** corner's parameter; each corner becomes a knot of multiplicity p (the curve may turn
+** sharply there), and the remaining knots are spread over the pieces between corners in
+** proportion to their number of points, by the averaging rule within each piece. A
+** guard then merges knots until every non-empty span holds at least two parameters
+** (taken modulo the period), so no span is ever empty. With no breaks this is periodic
+** averaging with the same guard.
+**
+** @param[in]  n_target wanted number of distinct control points N (>= p+1).
+** @param[out] period   up to n_target+1 knots t_0 <= ... <= t_N = t_0 + 1.
+** @param[out] n_out    the N actually placed (<= n_target; fewer when the guard merged).
+** @return BSFIT_OK, BSFIT_EDEGREE (p out of 1..BSFIT_MAX_DEGREE), BSFIT_EINVAL (breaks
+**         not increasing or out of range, u not in [0,1) non-decreasing, n_target too
+**         small for the breaks: N >= nb*p + 1 and N >= p+1), BSFIT_ETOOFEW (too few
+**         points for even the smallest knot vector), BSFIT_ENOMEM. */
+BSFIT_API bsfit_err bsfit_knots_place_breaks(const double *u, size_t m, int p, size_t n_target,
+                                             const size_t *breaks, size_t nb, double *period,
+                                             size_t *n_out, bsfit_status *st);
+
 #endif /* BSFIT_ANALYSIS_H */

@@ -1,0 +1,96 @@
+/*
+** param_trusted.c
+** Parameters computed over trusted points only (down-weighted outliers do not stretch
+** their neighbours' chords), the others interpolated by index.
+*/
+#include "internal.h"
+
+#include <math.h>
+#include <string.h>
+
+static bsfit_err check_weights(const double *w, size_t m, bsfit_status *st) {
+  size_t i;
+  for (i = 0; i < m; i++)
+    if (!isfinite(w[i]) || !(w[i] > 0))
+      return bsfit__fail(st, BSFIT_EWEIGHT, "weight %zu is %g (must be positive and finite)", i,
+                         w[i]);
+  return BSFIT_OK;
+}
+
+/* median of the weights (copy, selection) */
+static bsfit_err median_weight(const double *w, size_t m, double *med, bsfit_status *st) {
+  double *tmp = bsfit__alloc(NULL, m * sizeof(double));
+  if (tmp == NULL) return bsfit__fail(st, BSFIT_ENOMEM, "out of memory for %zu weights", m);
+  memcpy(tmp, w, m * sizeof(double));
+  *med = bsfit__select(tmp, m, m / 2);
+  bsfit__free(NULL, tmp, m * sizeof(double));
+  return BSFIT_OK;
+}
+
+/* untrusted points between trusted indices a and b (walking forward, b after a
+** modulo m) get parameters interpolated from ua to ub */
+static void fill_gap(double *u, size_t m, size_t a, size_t b, double ua, double ub) {
+  size_t gap = (b + m - a) % m, j;
+  for (j = 1; j < gap; j++) u[(a + j) % m] = ua + (ub - ua) * (double)j / (double)gap;
+}
+
+bsfit_err bsfit_params_trusted(const double *pts, size_t m, int dim, bsfit_param_kind kind,
+                               int closed, const double *w, double trust, double *u,
+                               bsfit_status *st) {
+  size_t i, nt = 0, *idx = NULL, first, prev;
+  double med = 0, *sub = NULL, *su = NULL, shift;
+  bsfit_err e;
+  if (!(trust >= 0 && trust < 1))
+    return bsfit__fail(st, BSFIT_EINVAL, "trust %g must be in [0, 1)", trust);
+  if (w == NULL || trust == 0) {
+    if (w != NULL && (e = check_weights(w, m, st)) != BSFIT_OK) return e;
+    return bsfit_params(pts, m, dim, kind, closed, u, st);
+  }
+  if (pts == NULL || u == NULL) return bsfit__fail(st, BSFIT_EINVAL, "NULL points or parameters");
+  if ((e = check_weights(w, m, st)) != BSFIT_OK) return e;
+  if ((e = median_weight(w, m, &med, st)) != BSFIT_OK) return e;
+  idx = bsfit__alloc(NULL, m * sizeof(size_t));
+  sub = bsfit__alloc(NULL, m * (size_t)dim * sizeof(double));
+  su = bsfit__alloc(NULL, m * sizeof(double));
+  if (idx == NULL || sub == NULL || su == NULL) {
+    e = bsfit__fail(st, BSFIT_ENOMEM, "out of memory for %zu points", m);
+    goto done;
+  }
+  for (i = 0; i < m; i++)
+    if (w[i] >= trust * med) {
+      memcpy(sub + nt * (size_t)dim, pts + i * (size_t)dim, (size_t)dim * sizeof(double));
+      idx[nt++] = i;
+    }
+  if (nt < 2) {
+    e = bsfit__fail(st, BSFIT_EDEGENERATE, "only %zu trusted point(s) (weight >= %g)", nt, trust * med);
+    goto done;
+  }
+  if ((e = bsfit_params(sub, nt, dim, kind, closed, su, st)) != BSFIT_OK) goto done;
+  for (i = 0; i < nt; i++) u[idx[i]] = su[i];
+  first = idx[0];
+  prev = first;
+  for (i = 1; i < nt; i++) {
+    fill_gap(u, m, prev, idx[i], su[i - 1], su[i]);
+    prev = idx[i];
+  }
+  if (closed) {
+    /* the gap across the end, then shift so that u[0] = 0 and u increases with i */
+    fill_gap(u, m, prev, first, su[nt - 1], 1.0);
+    shift = u[0];
+    for (i = 0; i < m; i++) {
+      double v = u[i] - shift;
+      u[i] = v < 0 ? v + 1.0 : v;
+      if (u[i] >= 1.0) u[i] = nextafter(1.0, 0.0);
+    }
+  } else {
+    /* untrusted ends of open data take the end parameters */
+    for (i = 0; i < first; i++) u[i] = 0.0;
+    for (i = idx[nt - 1] + 1; i < m; i++) u[i] = 1.0;
+  }
+  e = bsfit__ok(st);
+done:
+  bsfit__free(NULL, idx, m * sizeof(size_t));
+  bsfit__free(NULL, sub, m * (size_t)dim * sizeof(double));
+  bsfit__free(NULL, su, m * sizeof(double));
+  return e;
+}
