@@ -14,4 +14,27 @@
 ** the C loader of `require "bsfit"`. Sets no globals. */
 BSFIT_API int luaopen_bsfit(lua_State *L);
 
+/* Check/push helpers. The check functions raise a Lua error (bad argument #arg)
+** when the value at `arg` is not of the type; the returned pointers are borrowed:
+** valid while the value stays reachable from Lua (e.g. on the stack). */
+
+/** Points at arg: returns the row-major coordinates, sets *n (points) and *dim. */
+BSFIT_API const double *bsfit_lua_checkpoints(lua_State *L, int arg, size_t *n, size_t *dim);
+/** Pushes new zeroed Points (n x dim, dim 1..4) and returns its coordinates for the
+** caller to fill. Raises on bad sizes or out of memory. */
+BSFIT_API double *bsfit_lua_pushpoints(lua_State *L, size_t n, size_t dim);
+/** Vector at arg: returns its n doubles and sets *n. */
+BSFIT_API const double *bsfit_lua_checkvector(lua_State *L, int arg, size_t *n);
+/** Pushes a new zeroed Vector of n doubles and returns them for the caller to fill. */
+BSFIT_API double *bsfit_lua_pushvector(lua_State *L, size_t n);
+/** Curve at arg (raises for a closed curve). */
+BSFIT_API const bsfit_curve *bsfit_lua_checkcurve(lua_State *L, int arg);
+/** Pushes a Curve holding a deep copy of src (memory from Lua's allocator). */
+BSFIT_API void bsfit_lua_pushcurve(lua_State *L, const bsfit_curve *src);
+
+/** Surface at arg (raises for a closed surface). */
+BSFIT_API const bsfit_surface *bsfit_lua_checksurface(lua_State *L, int arg);
+/** Pushes a Surface holding a deep copy of src (memory from Lua's allocator). */
+BSFIT_API void bsfit_lua_pushsurface(lua_State *L, const bsfit_surface *src);
+
 #endif

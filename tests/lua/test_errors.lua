@@ -1,0 +1,74 @@
+-- test_errors.lua: the error contract of the binding (STYLE R3, R6): misuse raises
+-- `bad argument #N to 'f' (...)`, numerical outcomes return nil, message, code name.
+local T = require "tap"
+local bs = require "bsfit"
+
+T.test("module: version fields, metatable names, no globals", function()
+  T.ok(bs.version:match("^%d+%.%d+%.%d+$"), bs.version)
+  T.eq(bs._VERSION, "bsfit " .. bs.version)
+  T.eq(rawget(_G, "bsfit"), nil, "require sets no global")
+  local names = {
+    [bs.points.new(1, 2)] = "bsfit.Points", [bs.vector.new(1)] = "bsfit.Vector",
+    [bs.knots.clamped{degree = 1, count = 2}] = "bsfit.Knots",
+    [bs.bezier.new{control_points = {{0, 0}, {1, 1}}}] = "bsfit.Curve",
+    [bs.fitter{degree = 1, count = 2}] = "bsfit.Fitter",
+    [bs.bezier_surface.new{control_points = {{{0, 0, 0}, {0, 1, 0}}, {{1, 0, 0}, {1, 1, 1}}}}] = "bsfit.Surface",
+    [bs.svg.new{0, 0, 1, 1}] = "bsfit.Svg"}
+  for obj, name in pairs(names) do
+    T.eq(getmetatable(obj).__name, name)
+    T.ok(tostring(obj):sub(1, #name) == name, tostring(obj))
+  end
+  T.eq(bs.errname(-20), "ESINGULAR"); T.eq(bs.errname(-24), "EEMPTYSPAN")
+end)
+
+T.test("wrong userdata types name the expected type", function()
+  local P = bs.points.new{{0, 0}}
+  local C = bs.bezier.new{control_points = {{0, 0}, {1, 1}}}
+  local v = bs.vector.new{1}
+  T.raises("bad argument #1 to 'eval' (bsfit.Curve expected, got bsfit.Points)", function() C.eval(P, 0) end)
+  T.raises("bad argument #1 to 'degree' (bsfit.Knots expected, got bsfit.Curve)",
+           function() bs.knots.clamped{degree = 1, count = 2}.degree(C) end)
+  T.raises("bad argument #1 to 'eval_many' (bsfit.Vector expected, got bsfit.Points)", function() C:eval_many(P) end)
+  T.raises("bad argument #1 to 'get' (bsfit.Vector expected, got nil)", function() v.get(nil, 1) end)
+  local impostor = {eval = C.eval}
+  T.raises("calling 'eval' on bad self (bsfit.Curve expected, got table)", function() impostor:eval(0) end)
+end)
+
+T.test("option tables: unknown names, wrong field types, required fields", function()
+  T.raises("bad argument #1 to 'new' (unknown option 'weight')",
+           function() bs.curve.new{degree = 1, control_points = {{0, 0}, {1, 1}}, weight = {1, 1}} end)
+  T.raises("bad argument #1 to 'new' (option names must be strings, got number)",
+           function() bs.curve.new{degree = 1, control_points = {{0, 0}, {1, 1}}, 5} end)
+  T.raises("bad argument #1 to 'new' (field 'degree' must be an integer)",
+           function() bs.curve.new{degree = 1.5, control_points = {{0, 0}, {1, 1}}} end)
+  T.raises("bad argument #1 to 'new' (field 'control_points' must be a table or bsfit.Points)",
+           function() bs.curve.new{degree = 1, control_points = 7} end)
+  T.raises("bad argument #1 to 'new' (field 'degree' is required)",
+           function() bs.curve.new{control_points = {{0, 0}, {1, 1}}} end)
+  T.raises("bad argument #1 to 'new' (table expected, got no value)", function() bs.curve.new() end)
+  T.raises("bad argument #1 to 'averaging' (field 'count' is required)",
+           function() bs.knots.averaging{params = {0, 1}} end)
+end)
+
+T.test("NaN and non-monotone knots are misuse", function()
+  local C = bs.bezier.new{control_points = {{0, 0}, {1, 1}}}
+  T.raises("bad argument #1 to 'eval' (parameter is not finite)", function() C:eval(0 / 0) end)
+  T.raises("bad argument #1 to 'eval' (parameter is not finite)", function() C:eval(math.huge) end)
+  T.raises("bad argument #1 to 'new' (knots decrease at index 2 (0 < 1))",
+           function() bs.knots.new{degree = 0, values = {0, 1, 0}} end)
+  T.raises("bad argument #1 to 'new' (knots decrease at index 2 (0 < 1))",
+           function() bs.curve.new{degree = 0, knots = {0, 1, 0}, control_points = {{0, 0}, {1, 1}}} end)
+end)
+
+T.test("numerical outcomes return the fail triple", function()
+  -- all points coincident: no parameters can be assigned
+  local r, msg, code = bs.params({{2, 2}, {2, 2}})
+  T.ok(not r); T.eq(type(msg), "string"); T.eq(code, "EDEGENERATE")
+  -- a fit whose knot spans hold no data
+  local F = bs.fitter{degree = 1, knots = {0, 0, 0.5, 1, 1}}
+  local C, m2, c2 = F:fit({{0, 0}, {0.1, 0}, {0.2, 0}}, {0, 0.1, 0.2})
+  T.ok(not C); T.ok(m2:find("span"), m2); T.eq(c2, "EEMPTYSPAN")
+  -- files
+  T.fails("EIO", bs.points.read, "/nonexistent/dir/x.csv")
+  T.fails("EFORMAT", bs.curve.from_json, "[1, 2")
+end)

@@ -1,0 +1,162 @@
+-- test_reconstruct.lua: bsfit.cli.reconstruct (arguments, inputs, one section),
+-- bsfit.report (JSON, CSV, serializer, atomic writes) and bsfit.svg
+local T = require "tap"
+local bs = require "bsfit"
+local rc = require "bsfit.cli.reconstruct"
+local report = require "bsfit.report"
+local svg = require "bsfit.svg"
+
+local SRC = (arg and arg[1] or ""):match("^(.*)/tests/lua/[^/]*$") or os.getenv("BSFIT_SOURCE_DIR") or "."
+
+local function tmpdir()
+  local d = os.tmpname()
+  os.remove(d)
+  os.execute("mkdir -p '" .. d .. "'")
+  return d
+end
+
+local function slurp(path)
+  local f = io.open(path, "rb")
+  if not f then return nil end
+  local s = f:read("a")
+  f:close()
+  return s
+end
+
+T.test("parse: defaults and every option", function()
+  local o = rc.parse {}
+  T.eq(o.strategy, "periodic"); T.eq(o.degree, 3); T.eq(o.samples, 1000); T.eq(o.jobs, 1)
+  T.eq(o.outdir, "bsfit-out"); T.eq(o.count, nil)
+  T.ok(o.formats.json and o.formats.svg and o.formats.csv and not o.formats.iges)
+  o = rc.parse { "a.csv", "-o", "out", "--strategy", "carvalho", "--degree", "2", "--count", "12",
+                 "--samples=50", "--format", "json,iges", "-j", "4", "dir" }
+  T.eq(o.outdir, "out"); T.eq(o.strategy, "carvalho"); T.eq(o.degree, 2); T.eq(o.count, 12)
+  T.eq(o.samples, 50); T.eq(o.jobs, 4); T.ok(o.formats.iges and not o.formats.svg)
+  T.eq(#o.inputs, 2); T.eq(o.inputs[2], "dir")
+  T.eq(rc.parse { "--count", "auto" }.count, nil)
+  o = rc.parse { "--tol", "0.01", "--open" }
+  T.eq(o.tol, 0.01); T.eq(o.open, true)
+end)
+
+T.test("parse: bad arguments raise with a message", function()
+  T.raises("unknown option '--bogus'", function() rc.parse { "--bogus" } end)
+  T.raises("option -o needs a value", function() rc.parse { "-o" } end)
+  T.raises("--count must be a positive integer, got '0'", function() rc.parse { "--count", "0" } end)
+  T.raises("-j must be a positive integer, got 'x'", function() rc.parse { "-j", "x" } end)
+  T.raises("unknown format 'png' (json, svg, csv, iges)", function() rc.parse { "--format", "png" } end)
+  T.raises("--tol needs --strategy periodic (or a FILE.lua)", function()
+    rc.parse { "--strategy", "carvalho", "--tol", "1" } end)
+  T.raises("--samples must be at least 2", function() rc.parse { "--samples", "1" } end)
+  T.raises({ match = "^%-%-tol must be a number" }, function() rc.parse { "--tol", "-1" } end)
+end)
+
+T.test("inputs: a directory gives its point files, sorted, with unique names", function()
+  local ins = rc.inputs { SRC .. "/tests/data/demo", SRC .. "/tests/data/demo/cam.csv" }
+  T.eq(#ins, 6)
+  local names = {}
+  for i, s in ipairs(ins) do names[i] = s.name end
+  T.eq(table.concat(names, " "), "airfoil bracket cam knob_weighted noisy_blob cam_2")
+end)
+
+T.test("section: a good file gives its files and an ok row", function()
+  local d = tmpdir()
+  local row = rc.section { path = SRC .. "/tests/data/demo/cam.csv", name = "cam", outdir = d,
+                           strategy = "periodic", degree = 3, samples = 20,
+                           formats = { json = true, svg = true, csv = true } }
+  T.eq(row.status, "ok", row.error)
+  T.eq(row.points, 180)
+  T.ok(row.control_points >= 4 and row.max >= row.rms and row.rms >= 0)
+  local csv = slurp(d .. "/cam.csv")
+  local lines = 0
+  for _ in csv:gmatch("\n") do lines = lines + 1 end
+  T.eq(lines, 21, "header + 20 samples")
+  local C = bs.curve.from_json and bs.curve.from_json(slurp(d .. "/cam.json"))
+  if C then T.eq(C:distinct(), row.control_points) end
+  local pic = slurp(d .. "/cam.svg")
+  T.ok(pic:find("<svg", 1, true) and pic:find(">start<", 1, true) and pic:find(">max ", 1, true),
+       "the picture marks the start point and the worst residual")
+  os.execute("rm -rf '" .. d .. "'")
+end)
+
+T.test("section: a broken file gives an error row and no file", function()
+  local d = tmpdir()
+  for _, bad in ipairs { "text", "nan", "two_points", "empty" } do
+    local row = rc.section { path = SRC .. "/tests/data/bad/" .. bad .. ".csv", name = bad, outdir = d,
+                             strategy = "carvalho", degree = 3, samples = 10, formats = { json = true } }
+    T.eq(row.status, "error", bad)
+    T.ok(#row.error > 0, bad .. ": a message")
+    T.eq(slurp(d .. "/" .. bad .. ".json"), nil, bad .. ": no curve")
+  end
+  local row = rc.section { path = d .. "/missing.csv", name = "missing", outdir = d, strategy = "periodic",
+                           degree = 3, samples = 10, formats = { json = true } }
+  T.eq(row.status, "error")
+  os.execute("rm -rf '" .. d .. "'")
+end)
+
+T.test("report.json: sorted keys, arrays, escapes, exact numbers", function()
+  T.eq(report.json { b = 1, a = { 1, 2.5, "x\n" }, c = true }, '{"a":[1,2.5,"x\\n"],"b":1,"c":true}')
+  T.eq(report.json {}, "[]")
+  T.eq(report.json(0 / 0), "null")
+  local x = 0.1 + 0.2
+  T.eq(tonumber(report.json(x)), x, "round trip")
+end)
+
+T.test("report.csv: header, quoting, empty fields", function()
+  T.eq(report.csv({ "a", "b" }, { { a = 1, b = 'say "hi", ok' }, { a = 2.5 } }),
+       'a,b\n1,"say ""hi"", ok"\n2.5,\n')
+end)
+
+T.test("report.serialize: round trip of nested tables", function()
+  local v = { name = "x\0y", n = 3, f = 1 / 3, t = { 1, 2, { deep = true } }, inf = math.huge }
+  local w = report.deserialize(report.serialize(v))
+  T.eq(w.name, v.name); T.eq(w.n, 3); T.eq(math.type(w.n), "integer"); T.eq(w.f, v.f)
+  T.eq(w.t[3].deep, true); T.eq(w.inf, math.huge)
+  T.eq(report.serialize(v), report.serialize(w), "deterministic text")
+end)
+
+T.test("report.write_atomic: replaces the file, leaves no temporary", function()
+  local d = tmpdir()
+  T.ok(report.write_atomic(d .. "/f.txt", "one"))
+  T.ok(report.write_atomic(d .. "/f.txt", "two"))
+  T.eq(slurp(d .. "/f.txt"), "two")
+  T.eq(slurp(d .. "/f.txt.tmp"), nil)
+  local ok, err = report.write_atomic(d .. "/no/such/dir/f.txt", "x")
+  T.eq(ok, nil); T.ok(type(err) == "string")
+  os.execute("rm -rf '" .. d .. "'")
+end)
+
+T.test("svg.section: y axis up, every layer present", function()
+  local P = bs.points.new { { 0, 0 }, { 10, 0 }, { 10, 5 } }
+  local text = svg.section { points = P, control = { { 0, 0 }, { 10, 5 } }, samples = P, closed = true,
+                             markers = { { 10, 5, "a<b" } }, title = "t", width = 224 }
+  -- width 224, margin 24: scale 17.6; (10, 5) maps to (200, 24) and (0, 0) to (24, 112)
+  T.ok(text:find('cx="200.00" cy="24.00"', 1, true), "top right point")
+  T.ok(text:find('cx="24.00" cy="112.00"', 1, true), "origin at the bottom")
+  T.ok(text:find("a&lt;b", 1, true), "labels escaped")
+  T.ok(text:find('class="curve"', 1, true) and text:find('class="control"', 1, true))
+end)
+
+T.test("the demo set is found next to the lua directory", function()
+  if os.getenv("BSFIT_DEMO_DIR") then return end
+  local d = rc.demo_dir()
+  T.ok(d:match("tests/data/demo$"), d)
+  T.ok(slurp(d .. "/cam.csv"), "cam.csv in " .. d)
+end)
+
+T.test("section: --open and a strategy FILE.lua", function()
+  local d = tmpdir()
+  local f = io.open(d .. "/mine.lua", "w")
+  f:write('local p = require "bsfit.strategy.periodic"\n',
+          'return { run = function(P, o) o.count = 10; return p.run(P, o) end }\n')
+  f:close()
+  local spec = { path = SRC .. "/tests/data/demo/bracket.csv", name = "b", outdir = d, strategy = d .. "/mine.lua",
+                 degree = 3, samples = 10, formats = { json = true } }
+  local row = rc.section(spec)
+  T.eq(row.status, "ok", row.error)
+  T.eq(row.control_points, 10, "the file's strategy ran")
+  spec.strategy, spec.open = "periodic", true
+  row = rc.section(spec)
+  T.eq(row.status, "ok", row.error)
+  T.ok(slurp(d .. "/b.json"):find('"periodic": *false'), "an open curve")
+  os.execute("rm -rf '" .. d .. "'")
+end)
