@@ -16,10 +16,11 @@
 ** data) is expressed in a local frame (origin at the point, first axis along the chord
 ** of the window); the normal coordinate(s) are fitted by a cubic in the tangential
 ** coordinate, and the point's residual is divided by sqrt(1 - leverage), which makes it
-** an unbiased sample of the noise whatever the spacing. The scale is the median of the
-** standardised residual magnitudes divided by the median of the noise-free distribution
-** (half-normal in 2D: 0.6745; Rayleigh-like chi with 2 degrees of freedom in 3D: 1.1774),
-** so corners and outliers do not bias it.
+** an unbiased sample of the noise whatever the spacing. The scale is the 40% quantile of
+** the standardised residual magnitudes divided by that of the noise distribution
+** (half-normal in 2D: 0.5244; chi with 2 degrees of freedom in 3D: 1.0108), so corners
+** and outliers, which inflate the upper residuals, do not bias it even when a third of
+** the windows hold one.
 **
 ** @param[in]  pts    m points, dim doubles each (dim 2 or 3).
 ** @param[in]  closed non-zero: the windows wrap around.
@@ -36,6 +37,19 @@ typedef struct bsfit_corner_opts {
   double min_angle_deg;  /**< smallest turn that can be a corner; 0: 30 degrees */
   double scale;          /**< length of each side window; 0: automatic (see below) */
 } bsfit_corner_opts;
+
+/** A corner found by bsfit_corners_detect. */
+typedef struct bsfit_corner {
+  size_t index;      /**< the sample nearest to the corner */
+  double angle;      /**< the turn between the two sides, degrees */
+  double position;   /**< where the corner lies along the samples: a fractional index j + f
+                          (f in [0, 1)) between samples j and j+1, f the share of the path
+                          Q_j -> point -> Q_{j+1} before the corner point; in [0, m).
+                          Only when both sides are straight to within 2 sigma (else the
+                          side lines miss the true corner) and the polygon turns less than
+                          90% of the corner's turn at `index`: otherwise `index` itself. */
+  double point[3];   /**< the corner itself: where the side lines meet (dim coordinates) */
+} bsfit_corner;
 
 /** Finds sharp corners: points where the contour turns much more than along its sides.
 **
@@ -63,14 +77,15 @@ typedef struct bsfit_corner_opts {
 ** sigma is not told apart from a corner; pass a smaller `scale` to resolve finer detail.
 ** Cost: O(m * w), w the number of points within `scale` of a point.
 **
-** @param[out] idx    indices of the corners, increasing; at most `cap` are written.
-** @param[out] angles the turn (degrees) at each corner, or NULL.
-** @param[out] count  the number of corners found (may exceed cap: then retry larger).
+** @param[out] corners the corners in increasing `index`; at most `cap` are written. A
+**                     corner between two samples keeps its true place in `position` and
+**                     `point`. Positions follow the order of the indices, so for closed
+**                     data the first may wrap to just below m.
+** @param[out] count   the number of corners found (may exceed cap: then retry larger).
 ** @return BSFIT_OK, or the errors of bsfit_noise_sigma. */
 BSFIT_API bsfit_err bsfit_corners_detect(const double *pts, size_t m, int dim,
-                                         const bsfit_corner_opts *opts, size_t *idx,
-                                         double *angles, size_t cap, size_t *count,
-                                         bsfit_status *st);
+                                         const bsfit_corner_opts *opts, bsfit_corner *corners,
+                                         size_t cap, size_t *count, bsfit_status *st);
 
 /** Parameters that down-weighted points cannot distort.
 **
@@ -92,11 +107,29 @@ BSFIT_API bsfit_err bsfit_params_trusted(const double *pts, size_t m, int dim,
                                          bsfit_param_kind kind, int closed, const double *w,
                                          double trust, double *u, bsfit_status *st);
 
+/** Makes parameters agree with corners that lie between samples.
+**
+** Chord-like parameters measure the chord Q_j Q_{j+1} across a corner, which cuts it:
+** the two straight sides then disagree on the corner's parameter by the cut. For each
+** corner with a fractional position j + f (f > 0), the parameter step from j to j+1 is
+** stretched to the path through the corner point (|Q_j X| + |X Q_{j+1}| for chord
+** parameters, the sum of square roots for centripetal; uniform parameters are left
+** alone), the later parameters move up, and all are rescaled to [0, 1] (open) or
+** [0, 1) with u[0] = 0 (closed). The corner's parameter is then the interpolation at
+** its position (as bsfit_knots_place_breaks does). The corners must be in increasing
+** position; m, dim and closed as for bsfit_params.
+** @return BSFIT_OK, BSFIT_EINVAL (position out of range or decreasing, kind unknown). */
+BSFIT_API bsfit_err bsfit_params_through_corners(const double *pts, size_t m, int dim,
+                                                 bsfit_param_kind kind, int closed,
+                                                 const bsfit_corner *corners, size_t nc,
+                                                 double *u, bsfit_status *st);
+
 /** One period of knots for a closed fit with C0 breaks (corners).
 **
 ** The parameters u (closed, non-decreasing in [0, 1), as from bsfit_params) are cut at
-** the corner points `breaks` (point indices, increasing). The period starts at the first
-** corner's parameter; each corner becomes a knot of multiplicity p (the curve may turn
+** the corners `breaks`: increasing fractional point indices in [0, m) (an integer is a
+** point; k + f lies between points k and k+1, its parameter interpolated, as
+** bsfit_corners_detect's positions). The period starts at the first corner's parameter; each corner becomes a knot of multiplicity p (the curve may turn
 ** sharply there), and the remaining knots are spread over the pieces between corners in
 ** proportion to their number of points, by the averaging rule within each piece. A
 ** guard then merges knots until every non-empty span holds at least two parameters
@@ -111,7 +144,7 @@ BSFIT_API bsfit_err bsfit_params_trusted(const double *pts, size_t m, int dim,
 **         small for the breaks: N >= nb*p + 1 and N >= p+1), BSFIT_ETOOFEW (too few
 **         points for even the smallest knot vector), BSFIT_ENOMEM. */
 BSFIT_API bsfit_err bsfit_knots_place_breaks(const double *u, size_t m, int p, size_t n_target,
-                                             const size_t *breaks, size_t nb, double *period,
+                                             const double *breaks, size_t nb, double *period,
                                              size_t *n_out, bsfit_status *st);
 
 #endif /* BSFIT_ANALYSIS_H */

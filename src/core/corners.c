@@ -187,6 +187,8 @@ static int meet(const side *a, const side *b, int dim, double *x) {
 typedef struct candidate {
   size_t k, from, to; /* the corner and its window (inclusive, along the traversal) */
   double angle, gap; /* the turn, and the distance from the side lines' meeting point */
+  double position;    /* fractional index of the corner along the samples */
+  double point[3];    /* where the side lines meet */
 } candidate;
 
 static double median_spacing(const contour *c, double *scratch) {
@@ -267,11 +269,63 @@ static double parabola_rss(const contour *c, size_t from, size_t to) {
 }
 
 /* The turn at k if it is a corner candidate, else a negative value. */
+/* The turn of the polygon at sample k (angle between its two edges), radians. */
+static double polygon_turn(const contour *c, size_t k) {
+  const double *a, *b = point(c, k), *q;
+  double ab = 0, bq = 0, dot = 0;
+  int d;
+  if (!c->closed && (k == 0 || k + 1 >= c->m)) return 0.0;
+  a = point(c, (k + c->m - 1) % c->m);
+  q = point(c, k + 1);
+  for (d = 0; d < c->dim; d++) {
+    ab += (b[d] - a[d]) * (b[d] - a[d]);
+    bq += (q[d] - b[d]) * (q[d] - b[d]);
+    dot += (b[d] - a[d]) * (q[d] - b[d]);
+  }
+  if (!(ab > 0 && bq > 0)) return 0.0;
+  return acos(fmax(-1.0, fmin(1.0, dot / sqrt(ab * bq))));
+}
+
+/* Where the corner point x lies along the samples: on the edge at k (before or
+** after it) nearest to x, as j + |Q_j x| / (|Q_j x| + |x Q_{j+1}|), wrapped into [0, m). */
+static double corner_position(const contour *c, size_t k, const double *x) {
+  double best_d = INFINITY, best = (double)k;
+  int dir, d;
+  for (dir = -1; dir <= 1; dir += 2) {
+    size_t j;
+    const double *a, *b;
+    double ab2 = 0, t = 0, dist2 = 0, da = 0, db = 0;
+    if (!c->closed && ((dir < 0 && k == 0) || (dir > 0 && k + 1 >= c->m))) continue;
+    j = dir < 0 ? (k + c->m - 1) % c->m : k;
+    a = point(c, j);
+    b = point(c, j + 1);
+    for (d = 0; d < c->dim; d++) {
+      ab2 += (b[d] - a[d]) * (b[d] - a[d]);
+      t += (x[d] - a[d]) * (b[d] - a[d]);
+      da += (x[d] - a[d]) * (x[d] - a[d]);
+      db += (x[d] - b[d]) * (x[d] - b[d]);
+    }
+    t = ab2 > 0 ? fmin(1.0, fmax(0.0, t / ab2)) : 0.0;
+    for (d = 0; d < c->dim; d++) {
+      double e = a[d] + t * (b[d] - a[d]) - x[d];
+      dist2 += e * e;
+    }
+    if (dist2 < best_d) {
+      double f = (sqrt(da) + sqrt(db)) > 0 ? sqrt(da) / (sqrt(da) + sqrt(db)) : 0.0;
+      best_d = dist2;
+      /* a corner at (or within rounding of) a sample is that sample */
+      best = f > 1.0 - 1e-9 ? (double)(j + 1) : (double)j + (f < 1e-9 ? 0.0 : f);
+    }
+  }
+  if (best >= (double)c->m) best -= (double)c->m;
+  return best;
+}
+
 static double corner_turn(const contour *c, size_t k, double scale, double sigma,
                           double spacing, double min_angle, size_t *from, size_t *to,
-                          double *gap_out) {
+                          double *gap_out, double *position, double *meet_point) {
   side left, right, half_left, half_right;
-  double angle, half, se, x[3], gap = 0, rss_lines, rss_smooth;
+  double angle, half, se, x[3] = {0, 0, 0}, gap = 0, rss_lines, rss_smooth;
   size_t half_from, half_to;
   int d;
   angle = turn_at_scale(c, k, scale, &left, &right, from, to);
@@ -284,6 +338,16 @@ static double corner_turn(const contour *c, size_t k, double scale, double sigma
   if (!meet(&left, &right, c->dim, x)) return -1.0;
   for (d = 0; d < c->dim; d++) gap += (x[d] - point(c, k)[d]) * (x[d] - point(c, k)[d]);
   *gap_out = sqrt(gap);
+  /* The meeting point stands for a corner between two samples only when both sides
+  ** are straight to the noise level (a curved side bends its line away from the true
+  ** corner) and the polygon does not already turn (almost) all the way at Q_k itself
+  ** (then the corner is that sample). */
+  if (left.rms <= 2.0 * sigma + 1e-6 * scale && right.rms <= 2.0 * sigma + 1e-6 * scale &&
+      polygon_turn(c, k) < 0.9 * angle)
+    *position = corner_position(c, k, x);
+  else
+    *position = (double)k;
+  memcpy(meet_point, x, sizeof x);
   if (*gap_out > 3.0 * sigma + 0.5 * spacing + 0.02 * scale) return -1.0;
   /* two lines must explain the window far better than a smooth bend does */
   rss_lines = (double)left.count * left.rms * left.rms + (double)right.count * right.rms * right.rms;
@@ -297,10 +361,12 @@ static double corner_turn(const contour *c, size_t k, double scale, double sigma
   return angle;
 }
 
+/* Is k strictly inside w's window (from, to), walking forward, possibly across the
+** end? The far ends are excluded: a corner may stand at the end of its neighbour's
+** side (a notch as deep as the scale), since both sides passed the straightness test. */
 static int in_window(const candidate *w, size_t k, size_t m) {
-  /* is k within [from, to] walking forward (possibly across the end)? */
-  size_t len = (w->to + m - w->from) % m;
-  return (k + m - w->from) % m <= len;
+  size_t len = (w->to + m - w->from) % m, off = (k + m - w->from) % m;
+  return off > 0 && off < len;
 }
 
 /* Keeps the candidates nearest to where their side lines meet (the neighbours of a
@@ -330,7 +396,7 @@ static size_t thin_candidates(candidate *cand, size_t nc, size_t m) {
 }
 
 bsfit_err bsfit_corners_detect(const double *pts, size_t m, int dim,
-                               const bsfit_corner_opts *opts, size_t *idx, double *angles,
+                               const bsfit_corner_opts *opts, bsfit_corner *corners,
                                size_t cap, size_t *count, bsfit_status *st) {
   contour c;
   candidate *cand;
@@ -377,20 +443,25 @@ bsfit_err bsfit_corners_detect(const double *pts, size_t m, int dim,
   min_angle = (o.min_angle_deg > 0 ? o.min_angle_deg : 30.0) * PI / 180.0;
   for (k = 0; k < m; k++) {
     size_t from, to;
-    double gap = 0, a = corner_turn(&c, k, scale, sigma, spacing, min_angle, &from, &to, &gap);
+    double gap = 0, pos = 0, x[3] = {0, 0, 0};
+    double a = corner_turn(&c, k, scale, sigma, spacing, min_angle, &from, &to, &gap, &pos, x);
     if (a >= 0) {
       cand[nc].k = k;
       cand[nc].from = from;
       cand[nc].to = to;
       cand[nc].angle = a;
       cand[nc].gap = gap;
+      cand[nc].position = pos;
+      memcpy(cand[nc].point, x, sizeof x);
       nc++;
     }
   }
   kept = thin_candidates(cand, nc, m);
   for (k = 0; k < kept && k < cap; k++) {
-    idx[k] = cand[k].k;
-    if (angles) angles[k] = cand[k].angle * 180.0 / PI;
+    corners[k].index = cand[k].k;
+    corners[k].angle = cand[k].angle * 180.0 / PI;
+    corners[k].position = cand[k].position;
+    memcpy(corners[k].point, cand[k].point, sizeof cand[k].point);
   }
   *count = kept;
   e = bsfit__ok(st);

@@ -1,7 +1,7 @@
 /*
 ** knot_breaks.c
-** One period of knots for a closed fit whose curve may turn sharply at given corner
-** points (knots of multiplicity p there), with a guard that never leaves a knot span
+** One period of knots for a closed fit whose curve may turn sharply at given corners
+** (knots of multiplicity p there), with a guard that never leaves a knot span
 ** without data.
 */
 #include "internal.h"
@@ -15,13 +15,20 @@ typedef struct knot {
   int corner;
 } knot;
 
-/* Parameter of point q, for q in [s0, s0 + m]: the points are walked once around the
-** period from point s0, so indices past the end continue in the next period. */
+/* Parameter at index q in [0, 2m]: the points are walked around the period, so
+** indices past the end continue in the next period. */
 static double val(const double *u, size_t m, size_t q) {
   return q < m ? u[q] : u[q - m] + 1.0;
 }
 
-static bsfit_err check_inputs(const double *u, size_t m, int p, const size_t *breaks, size_t nb,
+/* Parameter at the fractional index x in [0, 2m): interpolated between points. */
+static double interp(const double *u, size_t m, double x) {
+  size_t i = (size_t)x;
+  double f = x - (double)i;
+  return f > 0 ? (1.0 - f) * val(u, m, i) + f * val(u, m, i + 1) : val(u, m, i);
+}
+
+static bsfit_err check_inputs(const double *u, size_t m, int p, const double *breaks, size_t nb,
                               bsfit_status *st) {
   size_t i;
   if (p < 1 || p > BSFIT_MAX_DEGREE)
@@ -31,50 +38,47 @@ static bsfit_err check_inputs(const double *u, size_t m, int p, const size_t *br
     if (!(u[i] >= 0 && u[i] < 1) || (i > 0 && u[i] < u[i - 1]))
       return bsfit__fail(st, BSFIT_EINVAL, "parameter %zu (%g) is not in [0, 1) non-decreasing", i, u[i]);
   for (i = 0; i < nb; i++)
-    if (breaks[i] >= m || (i > 0 && breaks[i] <= breaks[i - 1]))
-      return bsfit__fail(st, BSFIT_EINVAL, "break %zu (point %zu) is out of range or not increasing", i,
-                         breaks[i]);
+    if (!(breaks[i] >= 0 && breaks[i] < (double)m) || (i > 0 && !(breaks[i] > breaks[i - 1])))
+      return bsfit__fail(st, BSFIT_EINVAL, "break %zu (at %g) is out of [0, %zu) or not increasing",
+                         i, breaks[i], m);
   return BSFIT_OK;
 }
 
-/* corners kept: each piece between consecutive corners needs 3 points or more */
-static size_t keep_breaks(const size_t *breaks, size_t nb, size_t m, size_t *kept) {
+/* Corners kept: each piece between consecutive corners must span 3 point gaps or
+** more (its interior control points need data). */
+static size_t keep_breaks(const double *breaks, size_t nb, size_t m, double *kept) {
   size_t i, nk = 0;
   for (i = 0; i < nb; i++) {
-    if (nk > 0 && breaks[i] - kept[nk - 1] < 3) continue;
+    if (nk > 0 && breaks[i] - kept[nk - 1] < 3.0) continue;
     kept[nk++] = breaks[i];
   }
-  while (nk > 1 && kept[0] + m - kept[nk - 1] < 3) nk--; /* the piece across the end */
+  while (nk > 1 && kept[0] + (double)m - kept[nk - 1] < 3.0) nk--; /* across the end */
   return nk;
 }
 
-/* K interior knots of the piece of `len` spans of points from point a (a + len is the
-** next corner), at equal point counts (averaging in index space) */
-static size_t place_piece(const double *u, size_t m, size_t a, size_t len, size_t K, knot *out) {
+/* K interior knots of the piece from fractional index a to b, at equal point counts
+** (averaging in index space). */
+static size_t place_piece(const double *u, size_t m, double a, double b, size_t K, knot *out) {
   size_t k;
   for (k = 1; k <= K; k++) {
-    double x = (double)k * (double)len / (double)(K + 1);
-    size_t i = (size_t)x;
-    double alpha = x - (double)i;
-    double v1 = i + 1 <= len ? val(u, m, a + i + 1) : val(u, m, a + len);
-    out[k - 1].t = (1.0 - alpha) * val(u, m, a + i) + alpha * v1;
+    out[k - 1].t = interp(u, m, a + (b - a) * (double)k / (double)(K + 1));
     out[k - 1].corner = 0;
   }
   return K;
 }
 
-/* largest-remainder share of K knots among the pieces, len[j] points each (m in all) */
-static void share_knots(const size_t *len, size_t np, size_t m, size_t K, size_t *share) {
+/* largest-remainder share of K knots among the pieces, of lengths len[j] (total m) */
+static void share_knots(const double *len, size_t np, double m, size_t K, size_t *share) {
   size_t j, given = 0;
   for (j = 0; j < np; j++) {
-    share[j] = (size_t)floor((double)K * (double)len[j] / (double)m);
+    share[j] = (size_t)floor((double)K * len[j] / m);
     given += share[j];
   }
   while (given < K) {
     size_t best = 0;
     double best_r = -1;
     for (j = 0; j < np; j++) {
-      double r = (double)K * (double)len[j] / (double)m - (double)share[j];
+      double r = (double)K * len[j] / m - (double)share[j];
       if (r > best_r) {
         best_r = r;
         best = j;
@@ -88,10 +92,11 @@ static void share_knots(const size_t *len, size_t np, size_t m, size_t K, size_t
 /* The guard: walks the spans in order and merges each span holding fewer than two
 ** parameters into its neighbour, by removing the simple knot between them (the next
 ** one; or, when the next is a corner or the period's end, the span's own start).
-** knots[0], the period start, stays. Returns the new number of knots. */
-static size_t guard_spans(const double *u, size_t m, size_t s0, knot *knots, size_t nk) {
+** knots[0], the period start, stays. The points are walked from index s0, whose
+** parameters lie in [t0, t0 + 1). Returns the new number of knots. */
+static size_t guard_spans(const double *u, size_t m, size_t s0, double t_end, knot *knots,
+                          size_t nk) {
   size_t q = s0, k, w = 1, c = 0;
-  double t_end = val(u, m, s0 + m);
   for (k = 0; k < nk; k++) {
     double hi = k + 1 < nk ? knots[k + 1].t : t_end;
     while (q < s0 + m && val(u, m, q) < hi) {
@@ -106,16 +111,45 @@ static size_t guard_spans(const double *u, size_t m, size_t s0, knot *knots, siz
   return w;
 }
 
+/* Knots of the pieces between the kept corners; returns their number. */
+static size_t place_with_corners(const double *u, size_t m, int p, size_t n_target,
+                                 const double *kept, size_t nbk, double *len, size_t *share,
+                                 knot *knots) {
+  size_t j, nk = 0, K = n_target - nbk * (size_t)p;
+  for (j = 0; j < nbk; j++) len[j] = (j + 1 < nbk ? kept[j + 1] : kept[0] + (double)m) - kept[j];
+  share_knots(len, nbk, (double)m, K, share);
+  for (j = 0; j < nbk; j++) {
+    knots[nk].t = interp(u, m, kept[j]);
+    knots[nk++].corner = 1;
+    nk += place_piece(u, m, kept[j], kept[j] + len[j], share[j], knots + nk);
+  }
+  return nk;
+}
+
+/* writes the period (corners as p copies) and its N; 0 when too few spans remain */
+static size_t write_period(const knot *knots, size_t nk, int p, double t0, double *period) {
+  size_t i, N = 0;
+  for (i = 0; i < nk; i++) N += knots[i].corner ? (size_t)p : 1;
+  if (N < (size_t)p + 1 || N < 2) return 0;
+  N = 0;
+  for (i = 0; i < nk; i++) {
+    size_t r, copies = knots[i].corner ? (size_t)p : 1;
+    for (r = 0; r < copies; r++) period[N++] = knots[i].t;
+  }
+  period[N] = t0 + 1.0;
+  return N;
+}
+
 bsfit_err bsfit_knots_place_breaks(const double *u, size_t m, int p, size_t n_target,
-                                   const size_t *breaks, size_t nb, double *period, size_t *n_out,
+                                   const double *breaks, size_t nb, double *period, size_t *n_out,
                                    bsfit_status *st) {
-  size_t *kept = NULL, *len = NULL, *share = NULL, nbk, j, nk = 0, K, i, N, s0;
+  size_t *share = NULL, nbk, nk, s0, N;
+  double *kept = NULL, *len = NULL, t0;
   knot *knots = NULL;
-  double t0;
   bsfit_err e = check_inputs(u, m, p, breaks, nb, st);
   if (e != BSFIT_OK) return e;
-  kept = bsfit__alloc(NULL, (nb + 1) * sizeof(size_t));
-  len = bsfit__alloc(NULL, (nb + 1) * sizeof(size_t));
+  kept = bsfit__alloc(NULL, (nb + 1) * sizeof(double));
+  len = bsfit__alloc(NULL, (nb + 1) * sizeof(double));
   share = bsfit__alloc(NULL, (nb + 1) * sizeof(size_t));
   knots = bsfit__alloc(NULL, (n_target + 1) * sizeof(knot));
   if (!kept || !len || !share || !knots) {
@@ -128,42 +162,29 @@ bsfit_err bsfit_knots_place_breaks(const double *u, size_t m, int p, size_t n_ta
                     n_target, p, nbk);
     goto done;
   }
-  s0 = nbk > 0 ? kept[0] : 0;
-  t0 = u[s0];
   if (nbk == 0) {
-    /* one piece around the whole period; t0 itself is a simple knot */
+    /* one piece around the whole period; u[0] itself is a simple knot */
+    t0 = u[0];
+    s0 = 0;
     knots[0].t = t0;
     knots[0].corner = 0;
-    nk = 1 + place_piece(u, m, 0, m, n_target - 1, knots + 1);
+    nk = 1 + place_piece(u, m, 0.0, (double)m, n_target - 1, knots + 1);
   } else {
-    K = n_target - nbk * (size_t)p;
-    for (j = 0; j < nbk; j++) len[j] = (j + 1 < nbk ? kept[j + 1] : kept[0] + m) - kept[j];
-    share_knots(len, nbk, m, K, share);
-    for (j = 0; j < nbk; j++) {
-      knots[nk].t = val(u, m, kept[j]);
-      knots[nk++].corner = 1;
-      nk += place_piece(u, m, kept[j], len[j], share[j], knots + nk);
-    }
+    t0 = interp(u, m, kept[0]);
+    s0 = (size_t)ceil(kept[0]); /* the first point at or after the first corner */
+    nk = place_with_corners(u, m, p, n_target, kept, nbk, len, share, knots);
   }
-  nk = guard_spans(u, m, s0, knots, nk);
-  /* expand corners to p copies */
-  N = 0;
-  for (i = 0; i < nk; i++) N += knots[i].corner ? (size_t)p : 1;
-  if (N < (size_t)p + 1 || N < 2) {
-    e = bsfit__fail(st, BSFIT_ETOOFEW, "%zu points leave only %zu knot spans for degree %d", m, N, p);
+  nk = guard_spans(u, m, s0, t0 + 1.0, knots, nk);
+  N = write_period(knots, nk, p, t0, period);
+  if (N == 0) {
+    e = bsfit__fail(st, BSFIT_ETOOFEW, "%zu points leave too few knot spans for degree %d", m, p);
     goto done;
   }
-  N = 0;
-  for (i = 0; i < nk; i++) {
-    size_t r, copies = knots[i].corner ? (size_t)p : 1;
-    for (r = 0; r < copies; r++) period[N++] = knots[i].t;
-  }
-  period[N] = t0 + 1.0;
   *n_out = N;
   e = bsfit__ok(st);
 done:
-  bsfit__free(NULL, kept, (nb + 1) * sizeof(size_t));
-  bsfit__free(NULL, len, (nb + 1) * sizeof(size_t));
+  bsfit__free(NULL, kept, (nb + 1) * sizeof(double));
+  bsfit__free(NULL, len, (nb + 1) * sizeof(double));
   bsfit__free(NULL, share, (nb + 1) * sizeof(size_t));
   bsfit__free(NULL, knots, (n_target + 1) * sizeof(knot));
   return e;

@@ -145,16 +145,12 @@ bsfit_err bsfit_noise_sigma(const double *pts, size_t m, int dim, int closed, do
     bsfit__free(NULL, r, m * sizeof(double));
     return bsfit__fail(st, BSFIT_EDEGENERATE, "no window of distinct points to estimate the noise");
   }
-  med = bsfit__select(r, nvalid, nvalid / 2);
-  if (nvalid % 2 == 0) {
-    /* the mean of the two middle values: the lower one is the max of the lower half */
-    double lower = r[0];
-    for (k = 1; k < nvalid / 2; k++)
-      if (r[k] > lower) lower = r[k];
-    med = 0.5 * (med + lower);
-  }
+  /* The 40% quantile rather than the median: corners and outliers inflate the upper
+  ** residuals, and a section with many corners can have a third of its windows on one. */
+  med = bsfit__select(r, nvalid, (size_t)(0.4 * (double)(nvalid - 1) + 0.5));
   bsfit__free(NULL, r, m * sizeof(double));
-  /* median of |N(0,1)| is 0.67449; of a chi with 2 degrees of freedom sqrt(2 ln 2) */
-  *sigma = med / (dim == 2 ? 0.6744897501960817 : 1.1774100225154747);
+  /* the 40% quantile of |N(0,1)| is 0.52440 (Phi^-1(0.7)); of a chi with 2 degrees of
+  ** freedom sqrt(-2 ln 0.6) = 1.01077 */
+  *sigma = med / (dim == 2 ? 0.5244005127080407 : 1.0107676525947897);
   return bsfit__ok(st);
 }

@@ -94,3 +94,60 @@ done:
   bsfit__free(NULL, su, m * sizeof(double));
   return e;
 }
+
+/* the parameter measure of a length: the chord itself, or its square root */
+static double measure(bsfit_param_kind kind, double len) {
+  return kind == BSFIT_PARAM_CENTRIPETAL ? sqrt(len) : len;
+}
+
+static double dist_between(const double *a, const double *b, int dim) {
+  double s = 0;
+  int d;
+  for (d = 0; d < dim; d++) s += (a[d] - b[d]) * (a[d] - b[d]);
+  return sqrt(s);
+}
+
+bsfit_err bsfit_params_through_corners(const double *pts, size_t m, int dim,
+                                       bsfit_param_kind kind, int closed,
+                                       const bsfit_corner *corners, size_t nc, double *u,
+                                       bsfit_status *st) {
+  size_t c, i, next = 0;
+  double added = 0, total;
+  if (kind != BSFIT_PARAM_UNIFORM && kind != BSFIT_PARAM_CHORD && kind != BSFIT_PARAM_CENTRIPETAL)
+    return bsfit__fail(st, BSFIT_EINVAL, "unknown parameter kind %d", (int)kind);
+  for (c = 0; c < nc; c++)
+    if (!(corners[c].position >= 0 && corners[c].position < (double)m) ||
+        (c > 0 && !(corners[c].position > corners[c - 1].position)))
+      return bsfit__fail(st, BSFIT_EINVAL, "corner %zu position %g out of [0, %zu) or not increasing",
+                         c, corners[c].position, m);
+  if (kind == BSFIT_PARAM_UNIFORM || nc == 0) return bsfit__ok(st);
+  /* walk the points, adding each corner's stretch to every parameter after it */
+  for (i = 0; i < m; i++) {
+    while (next < nc && corners[next].position < (double)i) {
+      size_t j = (size_t)corners[next].position, j1 = (j + 1) % m;
+      double f = corners[next].position - (double)j;
+      double du = u[j1] - (u[j] - added); /* u[j] already moved by `added`, u[j1] not yet */
+      double chord = measure(kind, dist_between(pts + j * (size_t)dim, pts + j1 * (size_t)dim, dim));
+      double path = measure(kind, dist_between(pts + j * (size_t)dim, corners[next].point, dim)) +
+                    measure(kind, dist_between(corners[next].point, pts + j1 * (size_t)dim, dim));
+      if (f > 0 && chord > 0 && du > 0) added += du * (path - chord) / chord;
+      next++;
+    }
+    u[i] += added;
+  }
+  /* the corner after the last point (closed data) stretches the closing step */
+  while (next < nc) {
+    size_t j = (size_t)corners[next].position;
+    double f = corners[next].position - (double)j;
+    double du = 1.0 + u[0] - (u[j] - added);
+    double chord = measure(kind, dist_between(pts + j * (size_t)dim, pts, dim));
+    double path = measure(kind, dist_between(pts + j * (size_t)dim, corners[next].point, dim)) +
+                  measure(kind, dist_between(corners[next].point, pts, dim));
+    if (closed && f > 0 && chord > 0 && du > 0) added += du * (path - chord) / chord;
+    next++;
+  }
+  total = closed ? 1.0 + added : u[m - 1];
+  for (i = 0; i < m; i++) u[i] /= total;
+  if (!closed) u[m - 1] = 1.0;
+  return bsfit__ok(st);
+}

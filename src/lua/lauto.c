@@ -2,15 +2,15 @@
 ** lauto.c
 ** Lua access to the kernels of the automatic strategy (src/bsfit_analysis.h):
 **   bs.params_trusted(P [, kind [, {closed = true, weights = w, trust = 0.1}]]) --> Vector
-**   bs.knots.breaks{params = u, degree = 3, count = N, breaks = {i, ...}} --> Vector, N
-** (one period of knots with triple knots at the corner points i, 1-based, and the
-** number N of distinct control points actually placed after the empty-span guard).
+**   bs.params_through_corners(P, u, positions, points [, kind [, {closed = true}]]) --> Vector
+**   bs.knots.breaks{params = u, degree = 3, count = N, breaks = {x, ...}} --> Vector, N
+** (one period of knots with knots of multiplicity `degree` at the corners x: 1-based
+** fractional point positions, as the third result of bs.geom.corners; and the number
+** N of distinct control points actually placed after the empty-span guard).
 */
 #include "laux.h"
 
 #include <string.h>
-
-_Static_assert(sizeof(size_t) == sizeof(double), "corner indices are stored in a Vector block");
 
 /* bs.params_trusted(P [, kind [, opts]]) */
 static int auto_params_trusted(lua_State *L) {
@@ -41,26 +41,21 @@ static int auto_params_trusted(lua_State *L) {
   return bsfit__lua_result(L, e, &st, 1, 1);
 }
 
-/* the corner indices of field 'breaks' (1-based numbers in a table or Vector), 0-based
-** into a scratch Vector left on the stack */
-static bsfit_vector_ud *read_breaks(lua_State *L, int t, size_t m, size_t *nb) {
+/* the corners of field 'breaks': 1-based fractional point positions (a table or a
+** Vector, as bs.geom.corners gives them) made 0-based in a new Vector on the stack */
+static bsfit_vector_ud *read_breaks(lua_State *L, int t, size_t m) {
   bsfit_vector_ud *in, *out;
   size_t i;
-  if (bsfit__lua_field(L, t, "breaks") == LUA_TNIL) {
-    lua_pop(L, 1);
-    *nb = 0;
-    return bsfit__lua_newvector(L, 0);
-  }
+  if (bsfit__lua_field(L, t, "breaks") == LUA_TNIL) return bsfit__lua_newvector(L, 0);
   in = bsfit__lua_tovector(L, lua_gettop(L));
   out = bsfit__lua_newvector(L, in->n);
   for (i = 0; i < in->n; i++) {
     double b = in->x[i];
-    if (!(b >= 1 && b <= (double)m && b == (double)(size_t)b))
-      luaL_argerror(L, t, lua_pushfstring(L, "field 'breaks': entry %d is not a point index 1..%d",
-                                          (int)i + 1, (int)m));
+    if (!(b >= 1 && b < (double)m + 1) || (i > 0 && !(b > in->x[i - 1])))
+      luaL_argerror(L, t, lua_pushfstring(L, "field 'breaks': entry %d is not an increasing "
+                                          "position in [1, %d]", (int)i + 1, (int)m));
     out->x[i] = b - 1;
   }
-  *nb = in->n;
   return out;
 }
 
@@ -69,7 +64,7 @@ static int auto_knots_breaks(lua_State *L) {
   static const char *const names[] = {"params", "degree", "count", "breaks", NULL};
   bsfit_vector_ud *u, *bv, *period;
   lua_Integer p, n;
-  size_t nb, i, N = 0, *idx;
+  size_t N = 0;
   bsfit_status st;
   bsfit_err e;
   luaL_checktype(L, 1, LUA_TTABLE);
@@ -80,24 +75,53 @@ static int auto_knots_breaks(lua_State *L) {
   n = req_integer(L, 1, "count");
   luaL_argcheck(L, p >= 1 && p <= BSFIT_MAX_DEGREE, 1, "field 'degree' out of range");
   luaL_argcheck(L, n >= 2 && n <= (lua_Integer)(1 << 28), 1, "field 'count' out of range");
-  bv = read_breaks(L, 1, u->n, &nb);
-  /* size_t indices live in a second scratch vector's storage (same size as doubles) */
-  {
-    bsfit_vector_ud *iv = bsfit__lua_newvector(L, nb);
-    idx = (size_t *)(void *)iv->x;
-    for (i = 0; i < nb; i++) idx[i] = (size_t)bv->x[i];
-  }
+  bv = read_breaks(L, 1, u->n);
   period = bsfit__lua_newvector(L, (size_t)n + 1);
-  e = bsfit_knots_place_breaks(u->x, u->n, (int)p, (size_t)n, idx, nb, period->x, &N, &st);
+  e = bsfit_knots_place_breaks(u->x, u->n, (int)p, (size_t)n, bv->x, bv->n, period->x, &N, &st);
   if (e != BSFIT_OK) return bsfit__lua_result(L, e, &st, 0, 1);
   period->n = N + 1; /* the guard may have merged spans: shrink the visible length */
   lua_pushinteger(L, (lua_Integer)N);
   return 2;
 }
 
+/* bs.params_through_corners(P, u, positions, points [, kind [, {closed = true}]]) -->
+** Vector: u made to agree with corners between samples (positions 1-based, as the
+** third and fourth results of bs.geom.corners). u itself is not changed. */
+static int auto_params_through_corners(lua_State *L) {
+  static const char *const kinds[] = {"uniform", "chord", "centripetal", NULL};
+  static const char *const names[] = {"closed", NULL};
+  bsfit_points_ud *P = bsfit__lua_topoints(L, 1);
+  bsfit_vector_ud *u = bsfit__lua_tovector(L, 2);
+  bsfit_vector_ud *pos = bsfit__lua_tovector(L, 3);
+  bsfit_points_ud *at = bsfit__lua_topoints(L, 4);
+  int kind = luaL_checkoption(L, 5, "chord", kinds);
+  int t = bsfit__lua_opttable(L, 6, names);
+  int closed = opt_boolean(L, t, "closed", 1);
+  bsfit_corner *corners;
+  bsfit_vector_ud *out;
+  bsfit_status st;
+  size_t k, d;
+  bsfit_err e;
+  luaL_argcheck(L, u->n == P->n, 2, "one parameter per point expected");
+  luaL_argcheck(L, at->n == pos->n && at->dim == P->dim, 4, "one corner point per position expected");
+  corners = (bsfit_corner *)lua_newuserdatauv(L, (pos->n > 0 ? pos->n : 1) * sizeof(bsfit_corner), 0);
+  for (k = 0; k < pos->n; k++) {
+    memset(&corners[k], 0, sizeof corners[k]);
+    corners[k].position = pos->x[k] - 1;
+    for (d = 0; d < P->dim; d++) corners[k].point[d] = at->xy[k * P->dim + d];
+  }
+  out = bsfit__lua_newvector(L, P->n);
+  memcpy(out->x, u->x, P->n * sizeof(double));
+  e = bsfit_params_through_corners(P->xy, P->n, (int)P->dim, (bsfit_param_kind)kind, closed,
+                                   corners, pos->n, out->x, &st);
+  return bsfit__lua_result(L, e, &st, 1, 3);
+}
+
 void bsfit__lua_lib_auto(lua_State *L) {
   lua_pushcfunction(L, auto_params_trusted);
   lua_setfield(L, -2, "params_trusted");
+  lua_pushcfunction(L, auto_params_through_corners);
+  lua_setfield(L, -2, "params_through_corners");
   if (lua_getfield(L, -1, "knots") == LUA_TTABLE) {
     lua_pushcfunction(L, auto_knots_breaks);
     lua_setfield(L, -2, "breaks");

@@ -118,16 +118,19 @@ static double opt_nonneg(lua_State *L, int t, const char *k, double hi) {
 }
 
 /* bs.geom.corners(P [, opts]) --> {i1, i2, ...} (increasing, 1-based), Vector of the
-** turns in degrees. The core writes at most m corners, into a scratch userdata (Lua's
-** memory, R4), before the exact-size results are made. */
+** turns in degrees, Vector of the positions (1-based fractional indices: where each
+** corner lies between samples), Points of the corner points (where the sides meet).
+** The core writes at most m corners into a scratch userdata (Lua's memory, R4)
+** before the exact-size results are made. */
 static int geom_corners(lua_State *L) {
   static const char *const opts[] = {"closed", "sigma", "min_angle", "scale", NULL};
   int t, closed;
   bsfit_points_ud *P = kernel_args(L, opts, &t, &closed);
   bsfit_corner_opts o;
-  size_t *idx, count = 0, k, cap = P->n > 0 ? P->n : 1;
-  double *ang;
-  bsfit_vector_ud *turns;
+  bsfit_corner *found;
+  size_t count = 0, k, d, cap = P->n > 0 ? P->n : 1;
+  bsfit_vector_ud *turns, *where;
+  bsfit_points_ud *at;
   bsfit_status st;
   bsfit_err e;
   memset(&o, 0, sizeof o);
@@ -135,19 +138,22 @@ static int geom_corners(lua_State *L) {
   o.sigma = opt_nonneg(L, t, "sigma", 0.0);
   o.min_angle_deg = opt_nonneg(L, t, "min_angle", 180.0);
   o.scale = opt_nonneg(L, t, "scale", 0.0);
-  idx = (size_t *)lua_newuserdatauv(L, cap * (sizeof(size_t) + sizeof(double)), 0);
-  ang = (double *)(void *)(idx + cap);
-  e = bsfit_corners_detect(P->xy, P->n, (int)P->dim, &o, idx, ang, cap, &count, &st);
+  found = (bsfit_corner *)lua_newuserdatauv(L, cap * sizeof(bsfit_corner), 0);
+  e = bsfit_corners_detect(P->xy, P->n, (int)P->dim, &o, found, cap, &count, &st);
   if (e != BSFIT_OK) return bsfit__lua_result(L, e, &st, 0, 1);
   if (count > cap) count = cap; /* cannot happen: one corner per point at most */
   lua_createtable(L, (int)count, 0);
   turns = bsfit__lua_newvector(L, count);
+  where = bsfit__lua_newvector(L, count);
+  at = bsfit__lua_newpoints(L, count, P->dim);
   for (k = 0; k < count; k++) {
-    lua_pushinteger(L, (lua_Integer)idx[k] + 1);
-    lua_rawseti(L, -3, (lua_Integer)k + 1);
-    turns->x[k] = ang[k];
+    lua_pushinteger(L, (lua_Integer)found[k].index + 1);
+    lua_rawseti(L, -5, (lua_Integer)k + 1);
+    turns->x[k] = found[k].angle;
+    where->x[k] = found[k].position + 1;
+    for (d = 0; d < P->dim; d++) at->xy[k * P->dim + d] = found[k].point[d];
   }
-  return 2;
+  return 4;
 }
 
 /* }==================================================================== */

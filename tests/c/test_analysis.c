@@ -70,11 +70,19 @@ static void test_noise_errors(void **state) {
 
 static size_t detect(const double *xy, size_t m, int closed, size_t *idx, size_t cap) {
   bsfit_corner_opts o;
-  size_t count;
+  bsfit_corner found[64];
+  size_t count, k;
   bsfit_status st;
   memset(&o, 0, sizeof o);
   o.closed = closed;
-  assert_int_equal(bsfit_corners_detect(xy, m, 2, &o, idx, NULL, cap, &count, &st), BSFIT_OK);
+  assert_true(cap <= 64);
+  assert_int_equal(bsfit_corners_detect(xy, m, 2, &o, found, cap, &count, &st), BSFIT_OK);
+  for (k = 0; k < count && k < cap; k++) {
+    idx[k] = found[k].index;
+    /* the corner point lies within one edge of its sample */
+    assert_true(fabs(found[k].position - (double)found[k].index) <= 1.0 ||
+                fabs(found[k].position - (double)found[k].index) >= (double)m - 1.0);
+  }
   return count;
 }
 

@@ -131,7 +131,7 @@ static void test_square_with_corner_breaks_is_fitted_exactly(void **state) {
   ** cubic space holds the square itself, so the periodic least-squares fit is exact */
   static double xy[2 * 200], u[200], t[201], res[200];
   const double sq[] = {0, 0, 1, 0, 1, 1, 0, 1};
-  const size_t corners[] = {0, 50, 100, 150};
+  const double corners[] = {0, 50, 100, 150};
   test_rng r = {4};
   size_t N, k;
   bsfit_fitter *f = NULL;
@@ -145,7 +145,7 @@ static void test_square_with_corner_breaks_is_fitted_exactly(void **state) {
   assert_int_equal(N, 24);
   check_period(u, 200, t, N, 3);
   for (k = 0; k < 4; k++) { /* each corner parameter is a triple knot */
-    double tc = u[corners[k]];
+    double tc = u[(size_t)corners[k]];
     size_t j, mult = 0;
     for (j = 0; j < N; j++) mult += t[j] == tc;
     assert_int_equal(mult, 3);
@@ -166,7 +166,8 @@ static void test_square_with_corner_breaks_is_fitted_exactly(void **state) {
 
 static void test_breaks_errors(void **state) {
   double u[10], t[20];
-  size_t i, N, bad[] = {3, 2}, far[] = {12};
+  size_t i, N;
+  double bad[] = {3, 2}, far[] = {12};
   bsfit_status st;
   (void)state;
   for (i = 0; i < 10; i++) u[i] = (double)i / 10.0;

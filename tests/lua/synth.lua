@@ -1,0 +1,154 @@
+-- tests/lua/synth.lua
+-- Synthetic sections with known truth for the strategy tests: smooth closed shapes
+-- r(theta), polygons with sharp corners, an airfoil, Gaussian noise from a seeded
+-- generator, and the symmetric Hausdorff distance between a fitted curve and the truth.
+
+local bs = require "bsfit"
+
+local M = {}
+
+-- xorshift-free LCG (deterministic across hosts) and Box-Muller
+function M.rng(seed)
+  local s = seed
+  local function uniform()
+    s = (s * 1103515245 + 12345) % 2147483648
+    return (s + 0.5) / 2147483648
+  end
+  local function gauss()
+    return math.sqrt(-2 * math.log(uniform())) * math.cos(2 * math.pi * uniform())
+  end
+  return uniform, gauss
+end
+
+-- smooth shapes of size ~2, as functions of t in [0, 2 pi)
+M.smooth = {
+  circle = function(t) return math.cos(t), math.sin(t) end,
+  ellipse = function(t) return math.cos(t), 0.5 * math.sin(t) end,
+  star = function(t) local r = 1 + 0.15 * math.cos(5 * t); return r * math.cos(t), r * math.sin(t) end,
+  superellipse = function(t)
+    local c, s = math.cos(t), math.sin(t)
+    local sc = c < 0 and -1 or 1
+    local ss = s < 0 and -1 or 1
+    return sc * math.sqrt(math.abs(c)), ss * math.sqrt(math.abs(s))
+  end,
+}
+
+-- points {x, y} of a smooth shape, m of them, uneven spacing when `uneven`
+function M.sample_smooth(f, m, uneven)
+  local pts = {}
+  for i = 0, m - 1 do
+    local t = 2 * math.pi * i / m
+    if uneven then t = t + 0.3 * math.sin(2 * t) end
+    local x, y = f(t)
+    pts[#pts + 1] = { x, y }
+  end
+  return pts
+end
+
+-- m points evenly along a closed polygon given by its vertices
+function M.sample_polygon(v, m)
+  local per, len = 0, {}
+  for i = 1, #v do
+    local a, b = v[i], v[i % #v + 1]
+    len[i] = math.sqrt((b[1] - a[1]) ^ 2 + (b[2] - a[2]) ^ 2)
+    per = per + len[i]
+  end
+  local pts, e, acc = {}, 1, 0
+  for i = 0, m - 1 do
+    local pos = per * i / m
+    while pos > acc + len[e] and e < #v do acc = acc + len[e]; e = e + 1 end
+    local a, b = v[e], v[e % #v + 1]
+    local f = (pos - acc) / len[e]
+    pts[#pts + 1] = { a[1] + f * (b[1] - a[1]), a[2] + f * (b[2] - a[2]) }
+  end
+  return pts
+end
+
+-- a D shape (half disc of radius 1) and a symmetric airfoil with a sharp trailing
+-- edge, as dense truth polylines and sampled points
+function M.d_shape(m)
+  local pts, nl = {}, math.floor(m * 2 / (2 + math.pi))
+  for i = 0, nl - 1 do pts[#pts + 1] = { -1 + 2 * i / nl, 0 } end
+  for i = 0, m - nl - 1 do
+    local t = math.pi * i / (m - nl)
+    pts[#pts + 1] = { math.cos(t), math.sin(t) }
+  end
+  return pts
+end
+
+function M.airfoil(m)
+  local pts = {}
+  for i = 0, m - 1 do
+    local t = 2 * math.pi * i / m
+    local x = 0.5 * (1 + math.cos(t))
+    local y = 0.6 * (0.2969 * math.sqrt(x) - 0.1260 * x - 0.3516 * x * x + 0.2843 * x ^ 3 - 0.1036 * x ^ 4)
+    pts[#pts + 1] = { x, t < math.pi and y or -y }
+  end
+  return pts
+end
+
+-- noisy copy of pts (table of {x, y}) as Points
+function M.noisy(pts, sigma, seed)
+  local _, gauss = M.rng(seed)
+  local q = {}
+  for i, p in ipairs(pts) do q[i] = { p[1] + sigma * gauss(), p[2] + sigma * gauss() } end
+  return bs.points.new(q)
+end
+
+-- distance from point (x, y) to segment a-b
+local function seg_dist(x, y, ax, ay, bx, by)
+  local dx, dy = bx - ax, by - ay
+  local l2 = dx * dx + dy * dy
+  local t = l2 > 0 and ((x - ax) * dx + (y - ay) * dy) / l2 or 0
+  if t < 0 then t = 0 elseif t > 1 then t = 1 end
+  local ex, ey = ax + t * dx - x, ay + t * dy - y
+  return math.sqrt(ex * ex + ey * ey)
+end
+
+-- one-sided distance: max over points of A of the distance to the closed polyline B
+-- (a full search: keep #A * #B to a few 10^5)
+local function directed(A, B)
+  local n, worst = #B, 0
+  for i = 1, #A do
+    local x, y = A[i][1], A[i][2]
+    local best = math.huge
+    for j = 1, n do
+      local b0, b1 = B[j], B[j % n + 1]
+      local d = seg_dist(x, y, b0[1], b0[2], b1[1], b1[2])
+      if d < best then best = d end
+    end
+    if best > worst then worst = best end
+  end
+  return worst
+end
+
+-- symmetric Hausdorff distance between curve C (k samples) and the closed truth
+-- polyline `truth` (table of {x, y}, dense)
+function M.hausdorff(C, truth, k)
+  local S = C:sample(k or 600)
+  local A = {}
+  for i = 1, #S do local x, y = S:get(i); A[i] = { x, y } end
+  return math.max(directed(A, truth), directed(truth, A))
+end
+
+-- true when the closed polyline of k samples of C crosses itself
+function M.self_intersects(C, k)
+  local S = C:sample(k or 400)
+  local n, p = #S, {}
+  for i = 1, n do local x, y = S:get(i); p[i] = { x, y } end
+  local function cross(o, a, b) return (a[1] - o[1]) * (b[2] - o[2]) - (a[2] - o[2]) * (b[1] - o[1]) end
+  for i = 1, n do
+    local a, b = p[i], p[i % n + 1]
+    for j = i + 2, n do
+      if not (i == 1 and j == n) then
+        local c, d = p[j], p[j % n + 1]
+        local d1, d2 = cross(a, b, c), cross(a, b, d)
+        local d3, d4 = cross(c, d, a), cross(c, d, b)
+        if d1 * d2 < 0 and d3 * d4 < 0 then return true end
+      end
+    end
+  end
+  return false
+end
+
+return M
