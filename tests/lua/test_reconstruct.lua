@@ -25,7 +25,7 @@ end
 
 T.test("parse: defaults and every option", function()
   local o = rc.parse {}
-  T.eq(o.strategy, "periodic"); T.eq(o.degree, 3); T.eq(o.samples, 1000); T.eq(o.jobs, 1)
+  T.eq(o.strategy, "auto"); T.eq(o.degree, 3); T.eq(o.samples, 1000); T.eq(o.jobs, 1)
   T.eq(o.outdir, "bsfit-out"); T.eq(o.count, nil)
   T.ok(o.formats.json and o.formats.svg and o.formats.csv and not o.formats.iges)
   o = rc.parse { "a.csv", "-o", "out", "--strategy", "carvalho", "--degree", "2", "--count", "12",
@@ -44,7 +44,7 @@ T.test("parse: bad arguments raise with a message", function()
   T.raises("--count must be a positive integer, got '0'", function() rc.parse { "--count", "0" } end)
   T.raises("-j must be a positive integer, got 'x'", function() rc.parse { "-j", "x" } end)
   T.raises("unknown format 'png' (json, svg, csv, iges)", function() rc.parse { "--format", "png" } end)
-  T.raises("--tol needs --strategy periodic (or a FILE.lua)", function()
+  T.raises("--tol needs --strategy auto or periodic (or a FILE.lua)", function()
     rc.parse { "--strategy", "carvalho", "--tol", "1" } end)
   T.raises("--samples must be at least 2", function() rc.parse { "--samples", "1" } end)
   T.raises({ match = "^%-%-tol must be a number" }, function() rc.parse { "--tol", "-1" } end)

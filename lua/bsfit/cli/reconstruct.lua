@@ -22,11 +22,11 @@ usage: bsfit reconstruct [INPUT...] [options]
                    means every *.csv, *.txt, *.xy, *.xyz, *.dat, *.pts file in it.
                    No INPUT: the demo set ($BSFIT_DEMO_DIR or tests/data/demo).
   -o OUTDIR        output directory (default bsfit-out)
-  --strategy S     carvalho | periodic | FILE.lua (default periodic)
+  --strategy S     auto | carvalho | periodic | FILE.lua (default auto)
   --degree P       curve degree (default 3)
   --count N|auto   control points (default auto: the paper's inversion / 50% rule)
-  --tol T          periodic: add control points until the max deviation is <= T
-  --open           fit open curves (periodic strategy only)
+  --tol T          auto, periodic: add control points until the max deviation is <= T
+  --open           fit open curves (auto and periodic strategies)
   --samples K      curve samples written to <name>.csv (default 1000)
   --format LIST    any of json,svg,csv,iges (default json,svg,csv)
   -j N             run N sections at a time, one Lua state per worker (default 1)
@@ -87,7 +87,7 @@ local switches = {
 
 -- Parses the argument list. Returns the options, or raises with a usage message.
 function M.parse(args)
-  local o = { inputs = {}, outdir = "bsfit-out", strategy = "periodic", degree = 3,
+  local o = { inputs = {}, outdir = "bsfit-out", strategy = "auto", degree = 3,
               samples = 1000, formats = parse_formats("json,svg,csv"), jobs = 1 }
   local i = 1
   while i <= #args do
@@ -110,8 +110,8 @@ function M.parse(args)
     end
     i = i + 1
   end
-  if o.tol and o.strategy == "carvalho" then error("--tol needs --strategy periodic (or a FILE.lua)", 0) end
-  if o.open and o.strategy == "carvalho" then error("--open needs --strategy periodic (or a FILE.lua)", 0) end
+  if o.tol and o.strategy == "carvalho" then error("--tol needs --strategy auto or periodic (or a FILE.lua)", 0) end
+  if o.open and o.strategy == "carvalho" then error("--open needs --strategy auto or periodic (or a FILE.lua)", 0) end
   return o
 end
 
@@ -210,7 +210,7 @@ local function load_strategy(s)
     mod = chunk()
   else
     local ok, m = pcall(require, "bsfit.strategy." .. s)
-    if not ok then error(("unknown strategy '%s' (carvalho, periodic or FILE.lua)"):format(s), 0) end
+    if not ok then error(("unknown strategy '%s' (auto, carvalho, periodic or FILE.lua)"):format(s), 0) end
     mod = m
   end
   if type(mod) ~= "table" or type(mod.run) ~= "function" then

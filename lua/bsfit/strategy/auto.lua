@@ -89,20 +89,50 @@ local function stats(d, w)
   return math.sqrt(s / sw), max, imax
 end
 
+-- Large sections are read through a subsample of at most SUBSAMPLE points for the
+-- noise level, the corners and the distances measured during the count search:
+-- all three are local or statistical, and the fits themselves still use every point.
+local SUBSAMPLE = 20000
+
+-- ctx.sub = {P = Points, stride = s, u = its parameters (set later)} when #P > SUBSAMPLE
+local function subsample(ctx, P)
+  if ctx.sub ~= nil or #P <= SUBSAMPLE then return ctx.sub end
+  local s = math.ceil(#P / SUBSAMPLE)
+  local t = {}
+  for i = 1, #P, s do t[#t + 1] = { P:get(i) } end
+  ctx.sub = { P = bs.points.new(t), stride = s }
+  return ctx.sub
+end
+
+-- every s-th value of a Vector, as a Vector
+local function every(v, s)
+  local t, r = v:totable(), {}
+  for i = 1, #t, s do r[#r + 1] = t[i] end
+  return bs.vector.new(r)
+end
+
+local NEWTON = 4 -- Newton steps per foot point: the start is always close
+
 -- Fit with n control points, then `rounds` parameter corrections (each: project
 -- the points on the curve, refit with the foot parameters). Returns the curve, the
--- foot parameters, the distances and the count placed.
-local function fit_corrected(ctx, P, n, rounds)
+-- foot parameters, the distances and the count placed. With `measure_sub`, the
+-- distances are those of the subsample (large sections, count search).
+local function fit_corrected(ctx, P, n, rounds, measure_sub)
   local K, N = knots_for(ctx, n)
   local u, w = ctx.params, ctx.weights
   local C = fit_once(ctx, P, K, u, w)
   local d
-  u, d = C:project(P, u)
   for _ = 1, rounds do
+    u = C:project(P, u, NEWTON)
     C = fit_once(ctx, P, K, u, w)
-    u, d = C:project(P, u)
   end
-  return C, u, d, N
+  if measure_sub then
+    local sub = ctx.sub
+    local _, ds = C:project(sub.P, every(u, sub.stride), NEWTON)
+    return C, u, ds, N, every(w, sub.stride)
+  end
+  u, d = C:project(P, u, NEWTON)
+  return C, u, d, N, w
 end
 
 -- }======================================================================
@@ -118,7 +148,8 @@ end
 
 function steps.sigma(P, ctx)
   if #P < 6 then return 0 end
-  return common.ok("noise estimate", bs.geom.noise_sigma(P, { closed = closed(ctx) }))
+  local sub = subsample(ctx, P)
+  return common.ok("noise estimate", bs.geom.noise_sigma(sub and sub.P or P, { closed = closed(ctx) }))
 end
 
 function steps.weights(P, ctx)
@@ -133,9 +164,18 @@ function steps.corners(P, ctx)
   if not closed(ctx) or #P < 12 then return {} end
   local o = { closed = true }
   if ctx.sigma > 0 then o.sigma = ctx.sigma end
-  local idx, turns, where, at = bs.geom.corners(P, o)
+  local sub = subsample(ctx, P)
+  local idx, turns, where, at = bs.geom.corners(sub and sub.P or P, o)
   common.ok("corners", idx, turns, where)
   if #idx == 0 then return {} end
+  if sub then
+    -- found on the subsample: at its points (the chords across are negligible there)
+    local full = {}
+    for i, k in ipairs(idx) do full[i] = (k - 1) * sub.stride + 1 end
+    table.sort(full)
+    ctx.corner_positions = full
+    return full
+  end
   -- positions in increasing order (the first corner's may wrap to just below m + 1),
   -- with their corner points, so the parameters can be made to agree with them
   local order, pos, pts = {}, where:totable(), at:totable()
@@ -185,8 +225,8 @@ function steps.count(P, ctx)
   local floor = 1e-7 * size_of(P) -- clean data: no need to go below a relative 1e-7
   local tries, best, chosen, stalls = {}, nil, nil, 0
   while true do
-    local C, u, d, N = fit_corrected(ctx, P, n, 1)
-    local rms, max = stats(d, ctx.weights)
+    local C, u, d, N, wm = fit_corrected(ctx, P, n, ctx.sub and 0 or 1, ctx.sub ~= nil)
+    local rms, max = stats(d, wm)
     local fit = { curve = C, params = u, distances = d, count = N, rms = rms, max = max }
     tries[#tries + 1] = { count = N, rms = rms, max = max }
     local score = tol and max or rms
@@ -225,7 +265,7 @@ function steps.robust(P, ctx)
     for i = 1, #dt do w[i] = dt[i] > c and base[i] * c / dt[i] or base[i] end
     local K = knots_for(ctx, ctx.count)
     C = fit_once(ctx, P, K, u, bs.vector.new(w))
-    u, d = C:project(P, u)
+    u, d = C:project(P, u, NEWTON)
     ctx.robust_weights = w
   end
   ctx.params_final, ctx.distances = u, d
@@ -233,7 +273,7 @@ function steps.robust(P, ctx)
 end
 
 function steps.measure(P, ctx)
-  local _, d = ctx.curve:project(P, ctx.params_final or ctx.params)
+  local _, d = ctx.curve:project(P, ctx.params_final or ctx.params, NEWTON)
   local dt = d:totable()
   local sum, max, imax = 0, -1, 1
   for i = 1, #dt do
