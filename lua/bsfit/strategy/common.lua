@@ -238,11 +238,12 @@ local function check_options(strategy, opts)
   end
   for k in pairs(opts) do
     if type(k) ~= "string" or (strategy.steps[k] == nil and strategy.settings[k] == nil
-                               and not (strategy.optional or {})[k]) then
+                               and not (strategy.optional or {})[k] and k ~= "smooth") then
       local names = {}
       for _, s in ipairs(strategy.order) do names[#names + 1] = s end
       for s in pairs(strategy.settings) do names[#names + 1] = s end
       for s in pairs(strategy.optional or {}) do names[#names + 1] = s end
+      names[#names + 1] = "smooth"
       table.sort(names)
       error(("bad argument #2 to 'run' (unknown option '%s'; %s accepts: %s)")
             :format(tostring(k), strategy.name, table.concat(names, ", ")), 3)
@@ -309,8 +310,40 @@ function M.run(strategy, P, opts)
     ctx[name] = v
     if M.is_curve(v) then ctx.curve = v end
   end
+  if opts.smooth ~= nil then
+    local t1 = clock()
+    ctx.smoothing = M.smooth_curve(ctx, opts.smooth)
+    ctx.times.smooth = (clock() - t1) * 1000
+    if strategy.steps.measure then ctx.measure = M.call(ctx, "measure", ctx.P) end
+  end
   ctx.total_ms = (clock() - t0) * 1000
   return ctx.curve, (strategy.report or M.report)(ctx)
+end
+
+-- The smoothing step every strategy accepts (SPEC 3): opts.smooth = k (or {k = k}) box
+-- filters the fitted curve over k knot spans (the moving average of k control points
+-- on uniform knots; the exact filter of the same width, k times the mean span, on any
+-- other knots), {delta = d} over [t - d, t + d]. The curve becomes one degree higher.
+-- Returns what it changed: the maximum deviation it introduced, and the total turning
+-- and bending energy before and after.
+function M.smooth_curve(ctx, spec)
+  local C = ctx.curve
+  if math.type(spec) == "integer" then spec = { k = spec } end
+  if type(spec) ~= "table" or (spec.delta == nil and (math.type(spec.k) ~= "integer" or spec.k < 1)) then
+    error("bad argument #2 to 'run' (option 'smooth' must be an integer k >= 1, {k = k} or {delta = d})", 0)
+  end
+  local S
+  if spec.delta ~= nil then
+    S = M.ok("smoothing", bs.filter.box(C, { delta = spec.delta }))
+  elseif C:is_uniform() then
+    S = M.ok("smoothing", bs.filter.box(C, spec.k))
+  else
+    local a, b = C:domain()
+    S = M.ok("smoothing", bs.filter.box(C, { delta = spec.k * (b - a) / C:distinct() / 2 }))
+  end
+  ctx.curve = S
+  return { deviation = C:max_deviation(S), turning = { C:total_turning(), S:total_turning() },
+           bending = { C:bending_energy(), S:bending_energy() } }
 end
 
 -- The report table (see the strategy modules for the fields).
@@ -327,6 +360,7 @@ function M.report(ctx)
   rep.tries = ctx.tries
   rep.times = ctx.times
   rep.total_ms = ctx.total_ms
+  rep.smoothing = ctx.smoothing
   return rep
 end
 
