@@ -395,6 +395,61 @@ static size_t thin_candidates(candidate *cand, size_t nc, size_t m) {
   return kept;
 }
 
+/* How far the sides of the current point reach, in index steps back and forth; moved
+** along with the point (two pointers), so the scan is O(m) whatever the window. */
+typedef struct window {
+  size_t back, fwd;
+} window;
+
+static size_t at(const contour *c, size_t k, long off) {
+  long m = (long)c->m;
+  return (size_t)((((long)k + off) % m + m) % m);
+}
+
+/* Moves the window to point k: each side ends at the first point (going outwards) that
+** is `scale` away, found from the previous ends. 0 when a side is cut by an open end. */
+static int move_window(const contour *c, size_t k, double scale, window *w) {
+  size_t limit = c->closed ? c->m / 2 : c->m;
+  if (w->fwd == 0) w->fwd = w->back = 1; /* first point */
+  else { w->back++; if (w->fwd > 1) w->fwd--; }
+  while (w->fwd > 1 && dist(c, k, at(c, k, (long)w->fwd - 1)) >= scale) w->fwd--;
+  while (w->fwd < limit && dist(c, k, at(c, k, (long)w->fwd)) < scale) w->fwd++;
+  if (w->back > limit) w->back = limit;
+  while (w->back > 1 && dist(c, k, at(c, k, -((long)w->back - 1))) >= scale) w->back--;
+  while (w->back < limit && dist(c, k, at(c, k, -(long)w->back)) < scale) w->back++;
+  if (!c->closed && (k < w->back || k + w->fwd >= c->m)) return 0;
+  return 1;
+}
+
+/* A cheap first test from the two-pointer window and prefix sums, O(1) per point:
+** both sides long enough, turning enough and straight enough. The exact test
+** (corner_turn) runs only where this passes. */
+static int quick_candidate(const contour *c, size_t k, double scale, double sigma,
+                           double min_angle, window *w) {
+  moments ml, mr;
+  side left, right;
+  double hint_l[3] = {0, 0, 0}, hint_r[3] = {0, 0, 0}, cosang = 0, angle;
+  size_t first_l, first_r;
+  int d;
+  if (!move_window(c, k, scale, w) || w->back < 3 || w->fwd < 3) return 0;
+  first_l = at(c, k, -(long)w->back);
+  first_r = at(c, k, 1);
+  ml = run_moments(c, first_l, at(c, k, -1));
+  mr = run_moments(c, first_r, at(c, k, (long)w->fwd));
+  for (d = 0; d < c->dim; d++) {
+    hint_l[d] = point(c, k)[d] - point(c, first_l)[d];
+    hint_r[d] = point(c, at(c, k, (long)w->fwd))[d] - point(c, k)[d];
+  }
+  fit_line(c, &ml, hint_l, &left);
+  fit_line(c, &mr, hint_r, &right);
+  for (d = 0; d < 3; d++) cosang += left.dir[d] * right.dir[d];
+  angle = acos(fmax(-1.0, fmin(1.0, cosang)));
+  /* generous: the exact test decides; this only skips the plainly smooth points */
+  if (angle < 0.8 * min_angle) return 0;
+  if (left.rms > 4.0 * sigma + 0.04 * scale || right.rms > 4.0 * sigma + 0.04 * scale) return 0;
+  return 1;
+}
+
 bsfit_err bsfit_corners_detect(const double *pts, size_t m, int dim,
                                const bsfit_corner_opts *opts, bsfit_corner *corners,
                                size_t cap, size_t *count, bsfit_status *st) {
@@ -402,6 +457,7 @@ bsfit_err bsfit_corners_detect(const double *pts, size_t m, int dim,
   candidate *cand;
   double sigma, scale, spacing, min_angle, *scratch;
   size_t k, nc = 0, kept, bytes_prefix, bytes_cand;
+  window reach = {0, 0};
   bsfit_corner_opts o;
   bsfit_err e;
   memset(&o, 0, sizeof o);
@@ -443,8 +499,9 @@ bsfit_err bsfit_corners_detect(const double *pts, size_t m, int dim,
   min_angle = (o.min_angle_deg > 0 ? o.min_angle_deg : 30.0) * PI / 180.0;
   for (k = 0; k < m; k++) {
     size_t from, to;
-    double gap = 0, pos = 0, x[3] = {0, 0, 0};
-    double a = corner_turn(&c, k, scale, sigma, spacing, min_angle, &from, &to, &gap, &pos, x);
+    double gap = 0, pos = 0, x[3] = {0, 0, 0}, a;
+    if (!quick_candidate(&c, k, scale, sigma, min_angle, &reach)) continue;
+    a = corner_turn(&c, k, scale, sigma, spacing, min_angle, &from, &to, &gap, &pos, x);
     if (a >= 0) {
       cand[nc].k = k;
       cand[nc].from = from;

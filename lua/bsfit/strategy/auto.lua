@@ -128,8 +128,10 @@ local function fit_corrected(ctx, P, n, rounds, measure_sub)
   end
   if measure_sub then
     local sub = ctx.sub
-    local _, ds = C:project(sub.P, every(u, sub.stride), NEWTON)
-    return C, u, ds, N, every(w, sub.stride)
+    if u ~= ctx.params or not sub.u then sub.u = every(u, sub.stride) end
+    sub.w = sub.w or every(w, sub.stride)
+    local _, ds = C:project(sub.P, sub.u, NEWTON)
+    return C, u, ds, N, sub.w
   end
   u, d = C:project(P, u, NEWTON)
   return C, u, d, N, w
@@ -248,7 +250,11 @@ end
 
 -- Final fit: the count found, `correct` rounds of parameter correction.
 function steps.fit(P, ctx)
-  local C, u, d = fit_corrected(ctx, P, ctx.count, ctx.settings.correct)
+  -- on large sections one correction round does nearly all the good (and each costs a
+  -- projection of every point)
+  local rounds = ctx.settings.correct
+  if ctx.sub then rounds = math.min(rounds, 1) end
+  local C, u, d = fit_corrected(ctx, P, ctx.count, rounds)
   ctx.params_final, ctx.distances = u, d
   return C
 end
