@@ -153,6 +153,8 @@ bsfit_points_ud *bsfit__lua_checkpoints(lua_State *L, int arg);
 bsfit_points_ud *bsfit__lua_topoints(lua_State *L, int arg);
 
 bsfit_vector_ud *bsfit__lua_newvector(lua_State *L, size_t n);
+/* As newvector, not zeroed: only for a kernel that writes every value. */
+bsfit_vector_ud *bsfit__lua_allocvector(lua_State *L, size_t n);
 bsfit_vector_ud *bsfit__lua_checkvector(lua_State *L, int arg);
 /* Vector userdata or table of numbers at `arg` (a table is replaced in its slot). */
 bsfit_vector_ud *bsfit__lua_tovector(lua_State *L, int arg);

@@ -219,19 +219,28 @@ static int fitter_fit(lua_State *L) {
     return luaL_argerror(L, 3, lua_pushfstring(L, "%d parameters for %d points", (int)u->n, (int)P->n));
   if (w && w->n != P->n)
     return luaL_argerror(L, 4, lua_pushfstring(L, "%d weights for %d points", (int)w->n, (int)P->n));
-  bsfit__lua_checkfinite(L, 2, P); /* 1-based messages before the core's 0-based ones */
-  if (w) bsfit__lua_checkweights(L, 4, w->x, w->n);
   if (u == NULL) { /* chord-length parameters, written into a Vector in slot 3 */
-    u = bsfit__lua_newvector(L, P->n);
+    u = bsfit__lua_allocvector(L, P->n);
     lua_replace(L, 3);
     e = bsfit_params(P->xy, P->n, (int)P->dim, BSFIT_PARAM_CHORD, F->periodic, u->x, &st);
-    if (e != BSFIT_OK) return bsfit__lua_result(L, e, &st, 0, 2);
+    if (e != BSFIT_OK) {
+      bsfit__lua_checkfinite(L, 2, P); /* raises with a 1-based message if that is why */
+      return bsfit__lua_result(L, e, &st, 0, 2);
+    }
   }
-  res = bsfit__lua_newvector(L, P->n); /* slot 5 */
-  C = bsfit__lua_newcurve(L, &a);     /* slot 6 */
+  res = bsfit__lua_allocvector(L, P->n); /* slot 5, every value written by the fit */
+  C = bsfit__lua_newcurve(L, &a);       /* slot 6 */
   e = bsfit_fitter_fit(F->f, P->xy, P->n, (int)P->dim, u->x, w ? w->x : NULL, &C->c, &rep,
                        res->x, &st);
-  if (e != BSFIT_OK) return bsfit__lua_result(L, e, &st, 0, fit_arg(e));
+  if (e != BSFIT_OK) {
+    /* the core checks the data in its assembly loop; on NaN or a bad weight, find the
+    ** culprit again to say it with 1-based indices (no extra pass when all is well) */
+    if (e == BSFIT_ENONFINITE || e == BSFIT_EWEIGHT) {
+      bsfit__lua_checkfinite(L, 2, P);
+      if (w) bsfit__lua_checkweights(L, 4, w->x, w->n);
+    }
+    return bsfit__lua_result(L, e, &st, 0, fit_arg(e));
+  }
   push_report(L, &rep, 5);
   return 2;
 }

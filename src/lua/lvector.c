@@ -25,13 +25,18 @@ bsfit_vector_ud *bsfit__lua_checkvector(lua_State *L, int arg) { return checkvec
 ** 2. Constructors
 ** ===================================================================== */
 
-bsfit_vector_ud *bsfit__lua_newvector(lua_State *L, size_t n) {
+bsfit_vector_ud *bsfit__lua_allocvector(lua_State *L, size_t n) {
   bsfit_vector_ud *v;
   if (n > (SIZE_MAX - sizeof *v) / sizeof(double)) luaL_error(L, "vector too large");
   v = (bsfit_vector_ud *)lua_newuserdatauv(L, sizeof *v + n * sizeof(double), 0);
   v->n = n;
-  if (n) memset(v->x, 0, n * sizeof(double));
   luaL_setmetatable(L, BSFIT_VECTOR_T);
+  return v;
+}
+
+bsfit_vector_ud *bsfit__lua_newvector(lua_State *L, size_t n) {
+  bsfit_vector_ud *v = bsfit__lua_allocvector(L, n);
+  if (n) memset(v->x, 0, n * sizeof(double));
   return v;
 }
 
