@@ -114,13 +114,53 @@ typedef struct foot_ctx {
   double lo, hi;
 } foot_ctx;
 
+static double ratio(double a, double b) { return b != 0.0 ? a / b : 0.0; } /* 0/0 = 0 */
+
+/* The hot case of projection, a polynomial cubic: C, C', C'' in span s from the basis
+** of degrees 1..3 and the derivative rule N'_{i,p} = p (N_{i,p-1} / (U_{i+p} - U_i) -
+** N_{i+1,p-1} / (U_{i+p+1} - U_{i+1})), without A2.3's tables. */
+static void cubic_derivs_span(const bsfit_curve *c, size_t s, double u, double *D) {
+  const double *U = c->knots;
+  double N1[2], N2[3], N3[4], dN2[3], D1[4], D2[4];
+  size_t d = (size_t)c->dim, q;
+  int j;
+  bsfit_basis_funs(s, u, 1, U, N1); /* N_{s-1,1}, N_{s,1} */
+  bsfit_basis_funs(s, u, 2, U, N2); /* N_{s-2,2} .. N_{s,2} */
+  bsfit_basis_funs(s, u, 3, U, N3); /* N_{s-3,3} .. N_{s,3} */
+  for (j = 0; j < 3; j++) { /* function i = s-2+j of degree 2 */
+    size_t i = s - 2 + (size_t)j;
+    double lo = j >= 1 ? N1[j - 1] : 0.0, hi = j <= 1 ? N1[j] : 0.0;
+    dN2[j] = 2.0 * (ratio(lo, U[i + 2] - U[i]) - ratio(hi, U[i + 3] - U[i + 1]));
+  }
+  for (j = 0; j < 4; j++) { /* function i = s-3+j of degree 3 */
+    size_t i = s - 3 + (size_t)j;
+    double lo = j >= 1 ? N2[j - 1] : 0.0, hi = j <= 2 ? N2[j] : 0.0;
+    double dlo = j >= 1 ? dN2[j - 1] : 0.0, dhi = j <= 2 ? dN2[j] : 0.0;
+    double a = U[i + 3] - U[i], b = U[i + 4] - U[i + 1];
+    D1[j] = 3.0 * (ratio(lo, a) - ratio(hi, b));
+    D2[j] = 3.0 * (ratio(dlo, a) - ratio(dhi, b));
+  }
+  for (q = 0; q < 3 * d; q++) D[q] = 0.0;
+  for (j = 0; j < 4; j++) {
+    const double *P = c->ctrl + (s - 3 + (size_t)j) * d;
+    for (q = 0; q < d; q++) {
+      D[q] += N3[j] * P[q];
+      D[d + q] += D1[j] * P[q];
+      D[2 * d + q] += D2[j] * P[q];
+    }
+  }
+}
+
 /* C, C', C'' at u (D: 3*dim) and |C(u) - P|^2. */
 static double foot_eval(const foot_ctx *F, double u, double *D) {
   const bsfit_curve *c = F->c;
   size_t q, d = (size_t)c->dim, s;
   double w = bsfit__curve_wrap(c, u), d2 = 0.0;
   s = bsfit_knots_find_span(c->knots, c->n, c->degree, w);
-  bsfit__curve_derivs_span(c, s, w, 2, D);
+  if (c->degree == 3 && c->weights == NULL && !c->bezier)
+    cubic_derivs_span(c, s, w, D);
+  else
+    bsfit__curve_derivs_span(c, s, w, 2, D);
   for (q = 0; q < d; q++) d2 += (D[q] - F->P[q]) * (D[q] - F->P[q]);
   return d2;
 }

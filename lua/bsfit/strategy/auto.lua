@@ -92,7 +92,7 @@ end
 -- Large sections are read through a subsample of at most SUBSAMPLE points for the
 -- noise level, the corners and the distances measured during the count search:
 -- all three are local or statistical, and the fits themselves still use every point.
-local SUBSAMPLE = 20000
+local SUBSAMPLE = 5000
 
 -- ctx.sub = {P = Points, stride = s, u = its parameters (set later)} when #P > SUBSAMPLE
 local function subsample(ctx, P)
@@ -255,7 +255,7 @@ function steps.fit(P, ctx)
   local rounds = ctx.settings.correct
   if ctx.sub then rounds = math.min(rounds, 1) end
   local C, u, d = fit_corrected(ctx, P, ctx.count, rounds)
-  ctx.params_final, ctx.distances = u, d
+  ctx.params_final, ctx.distances, ctx.distances_of = u, d, C
   return C
 end
 
@@ -274,12 +274,15 @@ function steps.robust(P, ctx)
     u, d = C:project(P, u, NEWTON)
     ctx.robust_weights = w
   end
-  ctx.params_final, ctx.distances = u, d
+  ctx.params_final, ctx.distances, ctx.distances_of = u, d, C
   return C
 end
 
 function steps.measure(P, ctx)
-  local _, d = ctx.curve:project(P, ctx.params_final or ctx.params, NEWTON)
+  local d = ctx.distances -- the fit's last projection, when it is of this very curve
+  if ctx.distances_of ~= ctx.curve or d == nil then
+    d = select(2, ctx.curve:project(P, ctx.params_final or ctx.params, NEWTON))
+  end
   local dt = d:totable()
   local sum, max, imax = 0, -1, 1
   for i = 1, #dt do
