@@ -20,6 +20,7 @@
 #include <cmocka.h>
 
 #include "bsfit.h"
+#include "testutil.h"
 
 #define DATA BSFIT_TEST_DATA "/io/"
 
@@ -27,23 +28,6 @@
 ** Helpers
 ** ===================================================================== */
 
-typedef struct counting {
-  long calls, fail_at;
-  long long live;
-} counting;
-
-static void *counting_alloc(void *ud, void *p, size_t osz, size_t nsz) {
-  counting *c = ud;
-  if (nsz == 0) {
-    if (p) c->live -= (long long)osz;
-    free(p);
-    return NULL;
-  }
-  if (++c->calls == c->fail_at) return NULL;
-  p = realloc(p, nsz);
-  if (p) c->live += (long long)nsz - (long long)osz;
-  return p;
-}
 
 static char tmpdir[512];
 

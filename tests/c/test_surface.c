@@ -14,6 +14,7 @@
 #include <cmocka.h>
 
 #include "bsfit.h"
+#include "testutil.h"
 
 #define POINT_EPS 1e-14 /* exact geometry, a few roundings */
 #define FD_EPS 1e-6     /* relative error of central differences with h = 1e-5 */
@@ -22,24 +23,6 @@
 ** Helpers
 ** ===================================================================== */
 
-/* Counting allocator that fails the N-th allocation (0 = never) and tracks live bytes. */
-typedef struct counting {
-  long calls, fail_at;
-  long long live;
-} counting;
-
-static void *counting_alloc(void *ud, void *p, size_t osz, size_t nsz) {
-  counting *c = ud;
-  if (nsz == 0) {
-    if (p) c->live -= (long long)osz;
-    free(p);
-    return NULL;
-  }
-  if (++c->calls == c->fail_at) return NULL;
-  p = realloc(p, nsz);
-  if (p) c->live += (long long)nsz - (p && osz ? (long long)osz : 0);
-  return p;
-}
 
 static double lcg(unsigned *state) {
   *state = *state * 1664525u + 1013904223u;

@@ -9,6 +9,7 @@
 #include <math.h>
 #include <stddef.h>
 #include <stdint.h>
+#include <stdlib.h>
 
 /* tolerances, named per domain */
 #define EPS_EXACT 1e-14 /* identities that hold up to rounding */
@@ -47,6 +48,26 @@ static inline void random_knots(test_rng *r, int p, size_t n, int clamped, doubl
     }
     run = (i > 0 && U[i] == U[i - 1]) ? run + 1 : 1;
   }
+}
+
+/* Counting allocator (bsfit_allocator contract) that fails the N-th allocation
+** (fail_at, 1-based; 0 = never) and tracks the live bytes, for the ENOMEM tests. */
+typedef struct counting {
+  long calls, fail_at;
+  long long live;
+} counting;
+
+static inline void *counting_alloc(void *ud, void *p, size_t osz, size_t nsz) {
+  counting *c = (counting *)ud;
+  if (nsz == 0) {
+    if (p) c->live -= (long long)osz;
+    free(p);
+    return NULL;
+  }
+  if (++c->calls == c->fail_at) return NULL;
+  p = realloc(p, nsz);
+  if (p) c->live += (long long)nsz - (long long)osz;
+  return p;
 }
 
 #endif
