@@ -161,6 +161,18 @@ BSFIT_API bsfit_err bsfit_curve_length(const bsfit_curve *c, double a, double b,
 BSFIT_API bsfit_err bsfit_curve_closest(const bsfit_curve *c, const double *P, double *u,
                                         double *dist, bsfit_status *st);
 
+/** bsfit_curve_closest for many points at once: the coarse samples (8 per knot span) are
+** evaluated once, then each point is bracketed by its nearest sample and refined by
+** Newton, exactly as bsfit_curve_closest does (same results).
+** @param[in]  pts  m points, dim doubles each.
+** @param[out] u    m parameters of the closest points.
+** @param[out] dist m distances, or NULL.
+** Cost: O(m K) for K = 8 (spans) + 1 samples, plus Newton per point.
+** @return BSFIT_OK, the codes of bsfit_curve_validate, BSFIT_EINVAL (NULL arrays),
+**         BSFIT_ENONFINITE (a point not finite), BSFIT_ENOMEM. */
+BSFIT_API bsfit_err bsfit_curve_closest_many(const bsfit_curve *c, const double *pts, size_t m,
+                                             double *u, double *dist, bsfit_status *st);
+
 /** Projects many points, each from its own starting parameter (the fitter's parameter
 ** correction): up to `iters` safeguarded Newton steps on f(u) = C'(u).(C(u) - P), a step
 ** being halved until the distance does not grow, so a foot is never farther than its

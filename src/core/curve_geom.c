@@ -251,6 +251,61 @@ bsfit_err bsfit_curve_closest(const bsfit_curve *c, const double *P, double *u, 
   return bsfit__ok(st);
 }
 
+/* One curve, many points: the same samples, bracket and Newton as bsfit_curve_closest,
+** with the samples evaluated once for all the points. */
+bsfit_err bsfit_curve_closest_many(const bsfit_curve *c, const double *pts, size_t m, double *u,
+                                   double *dist, bsfit_status *st) {
+  foot_ctx F;
+  double a, b, D[3 * 4], *smp, *par, *step;
+  size_t s, i, k, K = 0, p, d, q, bytes;
+  bsfit_err e = bsfit_curve_validate(c, st);
+  if (e != BSFIT_OK) return e;
+  if (m > 0 && (pts == NULL || u == NULL)) return bsfit__fail(st, BSFIT_EINVAL, "no points or no output");
+  if (!bsfit__all_finite(pts, m * (size_t)c->dim))
+    return bsfit__fail(st, BSFIT_ENONFINITE, "the points contain NaN or Inf");
+  bsfit_curve_domain(c, &a, &b);
+  p = (size_t)c->degree;
+  d = (size_t)c->dim;
+  for (s = p; s < c->n; s++)
+    if (c->knots[s + 1] > c->knots[s]) K += CLOSEST_SAMPLES + 1;
+  bytes = K * (d + 2) * sizeof(double);
+  smp = bsfit__alloc(NULL, bytes);
+  if (smp == NULL) return bsfit__fail(st, BSFIT_ENOMEM, "out of memory for %zu samples", K);
+  par = smp + K * d;
+  step = par + K;
+  F.c = c;
+  F.P = pts; /* unused by the sampling below */
+  for (s = p, k = 0; s < c->n; s++) {
+    double h = (c->knots[s + 1] - c->knots[s]) / CLOSEST_SAMPLES;
+    for (i = 0; h > 0 && i <= CLOSEST_SAMPLES; i++, k++) {
+      par[k] = c->knots[s] + h * (double)i;
+      step[k] = h;
+      (void)foot_eval(&F, par[k], D);
+      memcpy(smp + k * d, D, d * sizeof(double));
+    }
+  }
+  for (i = 0; i < m; i++) {
+    const double *P = pts + i * d;
+    double best = INFINITY, d2;
+    size_t kb = 0;
+    for (k = 0; k < K; k++) {
+      double dd = 0.0;
+      for (q = 0; q < d; q++) dd += (smp[k * d + q] - P[q]) * (smp[k * d + q] - P[q]);
+      if (dd < best) {
+        best = dd;
+        kb = k;
+      }
+    }
+    F.P = P;
+    F.lo = c->periodic ? par[kb] - step[kb] : fmax(par[kb] - step[kb], a);
+    F.hi = c->periodic ? par[kb] + step[kb] : fmin(par[kb] + step[kb], b);
+    u[i] = bsfit__curve_wrap(c, foot_newton(&F, par[kb], NEWTON_MAX_ITERS, &d2));
+    if (dist) dist[i] = sqrt(d2);
+  }
+  bsfit__free(NULL, smp, bytes);
+  return bsfit__ok(st);
+}
+
 bsfit_err bsfit_curve_project_many(const bsfit_curve *c, const double *pts, size_t m, double *u,
                                    double *dist, int iters, bsfit_status *st) {
   foot_ctx F;

@@ -369,6 +369,24 @@ static int curve_project(lua_State *L) {
   return 2;
 }
 
+/* C:closest_many(P) --> Vector of parameters, Vector of distances: C:closest for every
+** point of P in one call (the curve is sampled once) */
+static int curve_closest_many(lua_State *L) {
+  bsfit_curve *c = checkcurve(L, 1);
+  bsfit_points_ud *P = bsfit__lua_topoints(L, 2);
+  bsfit_vector_ud *u, *dist;
+  bsfit_status st;
+  bsfit_err e;
+  luaL_argcheck(L, (int)P->dim == c->dim, 2,
+                lua_pushfstring(L, "points of dimension %d for a curve of dimension %d", (int)P->dim, c->dim));
+  bsfit__lua_checkfinite(L, 2, P);
+  u = bsfit__lua_allocvector(L, P->n);
+  dist = bsfit__lua_allocvector(L, P->n);
+  e = bsfit_curve_closest_many(c, P->xy, P->n, u->x, dist->x, &st);
+  if (e != BSFIT_OK) return bsfit__lua_raise(L, e, &st, 2);
+  return 2;
+}
+
 /* C:is_uniform() --> true when every knot span is equal (relative 1e-8): the curves
 ** bs.filter.box(C, k) takes */
 static int curve_is_uniform(lua_State *L) {
@@ -632,7 +650,7 @@ static const luaL_Reg curve_meth[] = {
   {"insert", curve_insert}, {"refine", curve_refine}, {"to_json", curve_to_json},
   {"write", curve_write}, {"sample", curve_sample}, {"split", curve_split},
   {"reverse", curve_reverse}, {"elevate", curve_elevate}, {"length", curve_length},
-  {"closest", curve_closest}, {"project", curve_project}, {"is_uniform", curve_is_uniform},
+  {"closest", curve_closest}, {"project", curve_project}, {"closest_many", curve_closest_many}, {"is_uniform", curve_is_uniform},
   {"total_turning", curve_total_turning}, {"bending_energy", curve_bending_energy},
   {"max_deviation", curve_max_deviation}, {NULL, NULL}};
 

@@ -580,6 +580,32 @@ static void test_invalid_inputs(void **state) {
 
 /* }==================================================================== */
 
+static void test_closest_many_equals_closest(void **state) {
+  /* given random curves of every kind and points scattered around them, when the
+  ** closest points are found one by one and all at once, then they agree */
+  test_rng r = {2718};
+  int kind, rational;
+  (void)state;
+  for (kind = 0; kind <= 2; kind++)
+    for (rational = 0; rational <= 1; rational++) {
+      bsfit_curve c;
+      double pts[60 * 3], u[60], d[60], ui, di;
+      size_t i, n = 7;
+      int dim = 2 + rational;
+      if (!random_curve(&r, &c, 3, n, dim, kind, rational)) continue;
+      for (i = 0; i < 60 * (size_t)dim; i++) pts[i] = rng_range(&r, -1.5, 1.5);
+      assert_int_equal(bsfit_curve_closest_many(&c, pts, 60, u, d, NULL), BSFIT_OK);
+      for (i = 0; i < 60; i++) {
+        assert_int_equal(bsfit_curve_closest(&c, pts + i * (size_t)dim, &ui, &di, NULL), BSFIT_OK);
+        assert_float_equal(d[i], di, 1e-12);
+      }
+      pts[1] = NAN;
+      assert_int_equal(bsfit_curve_closest_many(&c, pts, 60, u, d, NULL), BSFIT_ENONFINITE);
+      assert_int_equal(bsfit_curve_closest_many(&c, NULL, 60, u, d, NULL), BSFIT_EINVAL);
+      bsfit_curve_free(&c);
+    }
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_derivs_vs_finite_differences),
@@ -594,6 +620,7 @@ int main(void) {
       cmocka_unit_test(test_sample),
       cmocka_unit_test(test_periodic_seam_kept_by_operations),
       cmocka_unit_test(test_invalid_inputs),
+      cmocka_unit_test(test_closest_many_equals_closest),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -220,3 +220,18 @@ T.test("shape measures: a circle's turning 2 pi and bending 2 pi / r; deviation 
   T.raises({match = "^bad argument #1 to 'max_deviation' %("},
            function() C:max_deviation(bs.curve.new{degree = 1, control_points = {{0, 0, 0}, {1, 1, 1}}}) end)
 end)
+
+T.test("C:closest_many equals C:closest point by point", function()
+  local C = bs.curve.new { degree = 2, control_points = { { 1, 0 }, { 1, 1 }, { 0, 1 } },
+                           weights = { 1, math.sqrt(0.5), 1 } } -- quarter circle
+  local P = bs.points.new { { 2, 0.5 }, { 0.3, 0.3 }, { -1, 2 }, { 0.7, 0.7 } }
+  local u, d = C:closest_many(P)
+  for i = 1, #P do
+    local ui, di = C:closest(P:get(i))
+    T.near(d:get(i), di, 1e-12)
+    T.near(u:get(i), ui, 1e-9)
+  end
+  -- a point on the arc's radius at distance r from the centre is |r - 1| away
+  T.near(d:get(4), math.abs(math.sqrt(0.98) - 1), 1e-12)
+  T.raises({ match = "point 1" }, function() C:closest_many(bs.points.new { { 0 / 0, 1 } }) end)
+end)

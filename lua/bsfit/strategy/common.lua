@@ -204,54 +204,22 @@ end
 -- C:closest when the binding has it, else the sampled search; call as f(C, x, y[, z]).
 function M.closest_fn(C) return C.closest or closest_sampled(C) end
 
--- Starting parameters for the points' feet: the nearest of K samples of C (4 per
--- control point); nil when that search would cost more than the per-point one.
-local function nearest_samples(C, P)
-  local m, K = #P, math.max(64, 4 * C:count())
-  if m * K > 400000 or not C.project then return nil end
-  local a, b = C:domain()
-  local step = (b - a) / (C:is_periodic() and K or K - 1)
-  local S, three = C:sample(K), P:dim() == 3
-  local sx, sy, sz = {}, {}, {}
-  for j = 1, K do sx[j], sy[j], sz[j] = S:get(j) end
-  local starts = {}
-  for i = 1, m do
-    local x, y, z = P:get(i)
-    local best, bj = math.huge, 1
-    for j = 1, K do
-      local ex, ey = sx[j] - x, sy[j] - y
-      local dd = ex * ex + ey * ey
-      if three then local ez = sz[j] - z; dd = dd + ez * ez end
-      if dd < best then best, bj = dd, j end
-    end
-    starts[i] = a + step * (bj - 1)
-  end
-  return bs.vector.new(starts)
-end
-
+-- Closest-point distances from every point of P to C: one C call (the curve is
+-- sampled once, each point bracketed by its nearest sample and refined by Newton).
 function M.deviations(C, P)
-  local m, d, sum, max, imax = #P, {}, 0, -1, 1
-  local starts = nearest_samples(C, P)
-  if starts then -- Newton from the nearest sample, all points in one C call
-    local _, dv = C:project(P, starts)
+  local d
+  if C.closest_many then
+    local _, dv = C:closest_many(P)
     d = dv:totable()
-    -- a coarse start can sit on the wrong branch (a sharp trailing edge): the largest
-    -- distances, which make the maximum, are checked by the exhaustive search
-    local order = {}
-    for i = 1, m do order[i] = i end
-    table.sort(order, function(x, y) return d[x] > d[y] end)
-    for r = 1, math.min(m, math.max(3, math.ceil(m / 10)), 200) do
-      local i = order[r]
-      local _, dc = C:closest(P:get(i))
-      if dc < d[i] then d[i] = dc end
-    end
   else
+    d = {}
     local closest = M.closest_fn(C)
-    for i = 1, m do
+    for i = 1, #P do
       local _, dist = closest(C, P:get(i))
       d[i] = dist
     end
   end
+  local m, sum, max, imax = #P, 0, -1, 1
   for i = 1, m do
     sum = sum + d[i] * d[i]
     if d[i] > max then max, imax = d[i], i end
