@@ -62,7 +62,7 @@ static bsfit_vector_ud *read_breaks(lua_State *L, int t, size_t m) {
 /* bs.knots.breaks{params =, degree =, count =, breaks =} */
 static int auto_knots_breaks(lua_State *L) {
   static const char *const names[] = {"params", "degree", "count", "breaks", NULL};
-  bsfit_vector_ud *u, *bv, *period;
+  bsfit_vector_ud *u, *bv, *scratch, *period;
   lua_Integer p, n;
   size_t N = 0;
   bsfit_status st;
@@ -76,10 +76,12 @@ static int auto_knots_breaks(lua_State *L) {
   luaL_argcheck(L, p >= 1 && p <= BSFIT_MAX_DEGREE, 1, "field 'degree' out of range");
   luaL_argcheck(L, n >= 2 && n <= (lua_Integer)(1 << 28), 1, "field 'count' out of range");
   bv = read_breaks(L, 1, u->n);
-  period = bsfit__lua_newvector(L, (size_t)n + 1);
-  e = bsfit_knots_place_breaks(u->x, u->n, (int)p, (size_t)n, bv->x, bv->n, period->x, &N, &st);
+  scratch = bsfit__lua_allocvector(L, (size_t)n + 1); /* room for the count asked */
+  e = bsfit_knots_place_breaks(u->x, u->n, (int)p, (size_t)n, bv->x, bv->n, scratch->x, &N, &st);
   if (e != BSFIT_OK) return bsfit__lua_result(L, e, &st, 0, 1);
-  period->n = N + 1; /* the guard may have merged spans: shrink the visible length */
+  /* the guard may have merged spans: the result has the N + 1 knots actually placed */
+  period = bsfit__lua_allocvector(L, N + 1);
+  memcpy(period->x, scratch->x, (N + 1) * sizeof(double));
   lua_pushinteger(L, (lua_Integer)N);
   return 2;
 }

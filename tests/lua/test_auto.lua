@@ -124,11 +124,23 @@ T.test("every step can be switched off or replaced", function()
   T.eq(#r1.corners, 0)
   local _, r2 = auto.run(P, { count = 30 })
   T.eq(r2.count, 30)
-  local _, r3 = auto.run(P, { correct = 0, robust = true })
-  T.ok(r3.rms > 0)
+  local _, r3 = auto.run(P, { correct = 0 })
+  T.ok(r3.rms > 0 and r3.rms < 5e-3, "fit without parameter correction: rms " .. r3.rms)
   local _, r4 = auto.run(P, { tol = 5e-3 })
   T.ok(r4.max <= 5e-3, "tol met: " .. r4.max)
   T.raises({ match = "unknown option 'bogus'" }, function() auto.run(P, { bogus = 1 }) end)
+end)
+
+T.test("robust = true: Huber reweighting lets the curve move away from a gross outlier", function()
+  local pts = synth.sample_smooth(synth.smooth.circle, 200, false)
+  pts[50] = { pts[50][1] * 1.15, pts[50][2] * 1.15 } -- 0.15 out, full weight
+  local P = synth.noisy(pts, 1e-3, 12)
+  local _, plain = auto.run(P)
+  local _, robust = auto.run(P, { robust = true })
+  -- the outlier's own distance grows: the curve is pulled toward it less
+  T.ok(robust.residuals[50] > plain.residuals[50] + 1e-3,
+       ("outlier distance %g (robust) vs %g (plain)"):format(robust.residuals[50], plain.residuals[50]))
+  T.ok(robust.residuals[50] > 0.1, "the robust curve stays near the circle: " .. robust.residuals[50])
 end)
 
 T.test("trusted parameters: an outlier does not stretch its neighbours", function()

@@ -204,9 +204,9 @@ fit_test("a custom weighting rule giving one point a huge weight pulls the curve
     return bs.vector.new(w)
   end
   local C0 = periodic.run(P, { count = 8 })
-  local _, d0 = common.closest_fn(C0)(C0, P:get(k))
+  local _, d0 = C0:closest(P:get(k))
   local C, rep = periodic.run(P, { count = 8, weights = rule })
-  local _, d = common.closest_fn(C)(C, P:get(k))
+  local _, d = C:closest(P:get(k))
   T.ok(d0 > 1e-2, "without the rule the curve misses the point (" .. d0 .. ")")
   T.ok(d < 1e-3, "with the rule the curve passes within 1e-3 (" .. d .. ")")
   T.eq(rep.weights:get(k), 1e9, "the report shows the rule's weights")

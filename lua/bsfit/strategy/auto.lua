@@ -19,7 +19,8 @@
 --            noise level (or stops improving near it); `tol` asks for a maximum
 --            distance instead
 --   fit      the final fit: `correct` rounds of parameter correction (foot points)
---   robust   optional Huber reweighting (setting robust = true)
+--   reweight optional Huber reweighting, run when the setting robust = true (a step
+--            and a setting cannot share a name: opts[step] replaces the step)
 --   measure  distances of the points to the curve (vectorised projection in C)
 -- Settings: degree (3), param ("chord"), closed (true), trust (0.1), correct (3),
 -- robust (false), huber (1.345), count_max (m/2 up to 500 points, then m/3, at
@@ -37,7 +38,7 @@ M.settings = { degree = 3, param = "chord", closed = true, trust = 0.1, correct 
                robust = false, huber = 1.345 }
 M.optional = { point_weights = true, tol = true, count_max = true }
 
-M.order = { "params", "sigma", "weights", "corners", "count", "fit", "robust", "measure" }
+M.order = { "params", "sigma", "weights", "corners", "count", "fit", "reweight", "measure" }
 
 local steps = {}
 M.steps = steps
@@ -78,11 +79,14 @@ local function fit_once(ctx, P, K, u, w)
 end
 
 -- Weighted RMS and maximum of the distances d (Vector) with weights w (Vector).
-local function stats(d, w)
+local function stats(d, w, huber)
   local dt, wt = d:totable(), w:totable()
   local s, sw, max, imax = 0, 0, -1, 1
   for i = 1, #dt do
-    s = s + wt[i] * dt[i] * dt[i]
+    -- with `huber` (robust setting) a far point counts as if at distance huber, so
+    -- the search is not driven by outliers that the reweighting will discount
+    local di = (huber and dt[i] > huber) and huber or dt[i]
+    s = s + wt[i] * di * di
     sw = sw + wt[i]
     if dt[i] > max then max, imax = dt[i], i end
   end
@@ -228,7 +232,7 @@ function steps.count(P, ctx)
   local tries, best, chosen, stalls = {}, nil, nil, 0
   while true do
     local C, u, d, N, wm = fit_corrected(ctx, P, n, ctx.sub and 0 or 1, ctx.sub ~= nil)
-    local rms, max = stats(d, wm)
+    local rms, max = stats(d, wm, ctx.settings.robust and ctx.settings.huber * math.max(sigma, 1e-12))
     local fit = { curve = C, params = u, distances = d, count = N, rms = rms, max = max }
     tries[#tries + 1] = { count = N, rms = rms, max = max }
     local score = tol and max or rms
@@ -261,7 +265,7 @@ end
 
 -- Optional Huber reweighting: points farther than huber x sigma from the curve get
 -- weight w c/|d|; three rounds.
-function steps.robust(P, ctx)
+function steps.reweight(P, ctx)
   if not ctx.settings.robust then return ctx.curve end
   local c = ctx.settings.huber * math.max(ctx.sigma, 1e-12)
   local base = ctx.weights:totable()

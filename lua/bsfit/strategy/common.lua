@@ -132,93 +132,13 @@ end
 -- =======================================================================
 
 -- Closest-point distances from the points of P to curve C: a Lua array, the RMS,
--- the maximum and its (1-based) index. This is the measure both strategies
--- report, so that their numbers compare (a fit's own residuals are measured at
--- the parameters ū_k, which the paper's closing step changes).
-
--- Distance from (x, y[, z]) to C(u).
-local function dist_at(C, u, q)
-  local c, s = { C:eval(u) }, 0
-  for k = 1, #q do local e = c[k] - q[k]; s = s + e * e end
-  return math.sqrt(s)
-end
-
--- Closest point by sampling: the local minima of the distance to k samples,
--- each refined by repeated resampling of a shrinking interval (robust where the
--- curve turns tightly between samples, as at a sharp trailing edge, where a
--- bracketing search assumes one minimum). Used only when the binding has no
--- C:closest.
-local function closest_sampled(C)
-  local a, b = C:domain()
-  local periodic = C:is_periodic()
-  local k = math.max(256, 16 * C:count())
-  local h = (b - a) / k
-  local u = {}
-  for i = 0, k do u[i + 1] = a + h * i end
-  local S = C:eval_many(bs.vector.new(u))
-  local sx, sy = {}, {}
-  for i = 1, #S do sx[i], sy[i] = S:get(i) end
-  local n = #sx
-
-  local function refine(u0, q)
-    local lo, hi = u0 - h, u0 + h
-    local bt, bd = u0, dist_at(C, u0, q)
-    for _ = 1, 9 do -- each pass shrinks the interval 8 times: 8^9 h is below 1e-12
-      if not periodic then lo, hi = math.max(a, lo), math.min(b, hi) end
-      local step = (hi - lo) / 16
-      for j = 0, 16 do
-        local t = lo + step * j
-        local d = dist_at(C, t, q)
-        if d < bd then bt, bd = t, d end
-      end
-      lo, hi = bt - step, bt + step
-    end
-    return bt, bd
-  end
-
-  return function(_, ...)
-    local q = { ... }
-    local qx, qy = q[1], q[2]
-    local d2 = {}
-    for i = 1, n do
-      local dx, dy = sx[i] - qx, sy[i] - qy
-      d2[i] = dx * dx + dy * dy
-    end
-    -- local minima of the sampled distance (x, y; z is checked by refine)
-    local minima = {}
-    for i = 1, n do
-      local l, r = d2[i - 1] or (periodic and d2[n - 1]) or math.huge, d2[i + 1] or (periodic and d2[2]) or math.huge
-      if d2[i] <= l and d2[i] <= r then minima[#minima + 1] = i end
-    end
-    table.sort(minima, function(x, y) return d2[x] < d2[y] end)
-    local bt, bd = u[1], math.huge
-    for j = 1, math.min(2, #minima) do
-      local t, d = refine(u[minima[j]], q)
-      if d < bd then bt, bd = t, d end
-    end
-    if periodic then bt = a + (bt - a) % (b - a) end
-    return bt, bd
-  end
-end
-
--- C:closest when the binding has it, else the sampled search; call as f(C, x, y[, z]).
-function M.closest_fn(C) return C.closest or closest_sampled(C) end
-
--- Closest-point distances from every point of P to C: one C call (the curve is
--- sampled once, each point bracketed by its nearest sample and refined by Newton).
+-- the maximum and its (1-based) index. This is the measure every strategy reports,
+-- so that their numbers compare (a fit's own residuals are measured at the
+-- parameters ū_k, which the paper's closing step changes). One C call: the curve is
+-- sampled once, each point bracketed by its nearest sample and refined by Newton.
 function M.deviations(C, P)
-  local d
-  if C.closest_many then
-    local _, dv = C:closest_many(P)
-    d = dv:totable()
-  else
-    d = {}
-    local closest = M.closest_fn(C)
-    for i = 1, #P do
-      local _, dist = closest(C, P:get(i))
-      d[i] = dist
-    end
-  end
+  local _, dv = C:closest_many(P)
+  local d = dv:totable()
   local m, sum, max, imax = #P, 0, -1, 1
   for i = 1, m do
     sum = sum + d[i] * d[i]
