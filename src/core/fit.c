@@ -10,12 +10,6 @@
 #include <math.h>
 #include <string.h>
 
-#if defined(__GNUC__)
-#  define FIT_INLINE static inline __attribute__((always_inline))
-#else
-#  define FIT_INLINE static inline
-#endif
-
 void bsfit_fit_opts_init(bsfit_fit_opts *o) {
   memset(o, 0, sizeof *o);
   o->degree = 3;
@@ -27,9 +21,9 @@ void bsfit_fit_opts_init(bsfit_fit_opts *o) {
 ** ======================================================================= */
 
 /* Sizes of the workspace block, in doubles / ints / bytes, for a configured fitter. */
-static size_t block_bytes(const bsfit_fitter *f, size_t off[12]) {
+static size_t block_bytes(const bsfit_fitter *f, size_t off[13]) {
   size_t p = (size_t)f->p, n = f->nraw, N = f->count, np = f->periodic ? N - p : 0;
-  size_t counts[11], i, total = 0;
+  size_t counts[12], i, total = 0;
   counts[0] = f->nk;                             /* U */
   counts[1] = f->periodic ? N + 1 : 0;           /* period */
   counts[2] = (n - p) * f->tri;                  /* inv */
@@ -41,15 +35,16 @@ static size_t block_bytes(const bsfit_fitter *f, size_t off[12]) {
   counts[8] = f->periodic ? np * p : 0;          /* y */
   counts[9] = f->periodic ? p * p : 0;           /* s22 */
   counts[10] = f->periodic ? 4 * N : 0;          /* r2 */
-  for (i = 0; i < 11; i++) {
+  counts[11] = (n - p) * bsfit__fit_poly_stride(f->p); /* poly */
+  for (i = 0; i < 12; i++) {
     off[i] = total;
     total += counts[i] * sizeof(double);
   }
-  off[11] = total; /* iwork, then occ */
+  off[12] = total; /* iwork, then occ */
   return total + n * sizeof(int) + n;
 }
 
-static void carve(bsfit_fitter *f, const size_t off[12]) {
+static void carve(bsfit_fitter *f, const size_t off[13]) {
   char *b = f->block;
   f->U = (double *)(void *)(b + off[0]);
   f->period = (double *)(void *)(b + off[1]);
@@ -62,8 +57,9 @@ static void carve(bsfit_fitter *f, const size_t off[12]) {
   f->y = (double *)(void *)(b + off[8]);
   f->s22 = (double *)(void *)(b + off[9]);
   f->r2 = (double *)(void *)(b + off[10]);
-  f->iwork = (int *)(void *)(b + off[11]);
-  f->occ = (unsigned char *)(b + off[11] + f->nraw * sizeof(int));
+  f->poly = (double *)(void *)(b + off[11]);
+  f->iwork = (int *)(void *)(b + off[12]);
+  f->occ = (unsigned char *)(b + off[12] + f->nraw * sizeof(int));
 }
 
 static bsfit_err check_opts(const bsfit_fit_opts *o, bsfit_status *st) {
@@ -115,7 +111,7 @@ static bsfit_err load_knots(bsfit_fitter *f, const bsfit_fit_opts *o, bsfit_stat
   if (e != BSFIT_OK) return e;
   if ((f->fix_ends || f->has_t0 || f->has_t1) && (f->U[0] != f->U[p] || f->U[n] != f->U[n + p]))
     return bsfit__fail(st, BSFIT_EINVAL, "fixed ends and end tangents need clamped knots");
-  bsfit__fit_inverses(f);
+  bsfit__fit_prepare_spans(f);
   return BSFIT_OK;
 }
 
@@ -144,7 +140,7 @@ static void apply_settings(bsfit_fitter *f, const bsfit_fit_opts *o) {
 
 bsfit_err bsfit_fitter_configure(bsfit_fitter *f, const bsfit_fit_opts *o, bsfit_status *st) {
   bsfit_fitter next;
-  size_t off[12];
+  size_t off[13];
   bsfit_err e;
   if (f == NULL) return bsfit__fail(st, BSFIT_EINVAL, "fitter is NULL");
   e = check_opts(o, st);
@@ -206,304 +202,6 @@ const double *bsfit_fitter_knots(const bsfit_fitter *f, size_t *nknots) {
   if (f == NULL || !(f->fitted || f->user_knots)) return NULL;
   if (nknots) *nknots = f->nk;
   return f->U;
-}
-
-/* }====================================================================== */
-
-/* {======================================================================
-** Span kernels: basis functions from precomputed reciprocal knot differences
-** ======================================================================= */
-
-void bsfit__fit_inverses(bsfit_fitter *f) {
-  size_t s, p = (size_t)f->p;
-  const double *U = f->U;
-  double *inv = f->inv;
-  /* the Cox-de Boor denominators U[s+r+1] - U[s+1-j+r] depend on the span only */
-  for (s = p; s < f->nraw; s++) {
-    size_t j, r;
-    for (j = 1; j <= p; j++)
-      for (r = 0; r < j; r++) {
-        double den = U[s + r + 1] - U[s + 1 - j + r];
-        *inv++ = den != 0.0 ? 1.0 / den : 0.0; /* 0/0 = 0 at repeated knots */
-      }
-  }
-}
-
-/* The p+1 non-zero basis functions at u in span s (NURBS Book A2.2 without divisions). */
-FIT_INLINE void basis_inv(const double *U, const double *inv, size_t s, double u, int p,
-                          double *N) {
-  double left[BSFIT_MAX_DEGREE + 1], right[BSFIT_MAX_DEGREE + 1];
-  int j, r;
-  N[0] = 1.0;
-  for (j = 1; j <= p; j++) {
-    double saved = 0.0;
-    left[j] = u - U[s + 1 - (size_t)j];
-    right[j] = U[s + (size_t)j] - u;
-    for (r = 0; r < j; r++) {
-      double tmp = N[r] * *inv++;
-      N[r] = saved + right[r + 1] * tmp;
-      saved = left[j - r] * tmp;
-    }
-    N[j] = saved;
-  }
-}
-
-/* Last span of positive length: parameters at or beyond the domain's end belong to it. */
-static size_t last_span(const double *U, size_t n, int p) {
-  size_t last = n - 1;
-  while (last > (size_t)p && U[last] == U[n]) last--;
-  return last;
-}
-
-/* Bounds of the parameter interval handled by span s without a new search: the end
-** spans extend to infinity so extrapolated or end-point parameters stay in them. */
-FIT_INLINE void span_bounds(const double *U, int p, size_t last, size_t s, double *lo,
-                            double *hi) {
-  *lo = s == (size_t)p ? -INFINITY : U[s];
-  *hi = s >= last ? INFINITY : U[s + 1];
-}
-
-FIT_INLINE size_t next_span(const double *U, size_t n, int p, size_t s, double x) {
-  /* sorted parameters mostly move to the next span: try it before a binary search */
-  if (x >= U[s + 1] && s + 2 <= n && x < U[s + 2] && U[s + 2] > U[s + 1]) return s + 1;
-  return bsfit_knots_find_span(U, n, p, x);
-}
-
-FIT_INLINE double wrap_param(double x, double a, double b) {
-  double T = b - a, v;
-  if (x >= a && x < b) return x;
-  v = a + fmod(x - a, T);
-  if (v < a) v += T;
-  return v >= b ? a : v;
-}
-
-/* Adds one span's local sums to the band (lower storage) and the right-hand sides. */
-FIT_INLINE void flush_span(bsfit_fitter *f, size_t s, const int p, const int dim,
-                           const double *acc, const double *racc) {
-  size_t ldab = (size_t)p + 1, first = s - (size_t)p, n = f->nraw;
-  int i, j, c;
-  for (i = 0; i <= p; i++)
-    for (j = 0; j <= i; j++)
-      f->band[(size_t)(i - j) + (first + (size_t)j) * ldab] += acc[i * (p + 1) + j];
-  for (i = 0; i <= p; i++)
-    for (c = 0; c < dim; c++) f->rhs[(size_t)c * n + first + (size_t)i] += racc[i * dim + c];
-  f->occ[first] = 1;
-}
-
-/* One pass over the points: accumulates the lower band of N^T W N and N^T W Q span by
-** span (local sums, flushed when the span changes) plus the validation sums, which are
-** NaN-propagating adds instead of branches so the loop stays branch-light. */
-FIT_INLINE void assemble_kernel(bsfit_fitter *f, const double *pts, size_t m, const int dim,
-                                const double *u, const double *w, const int p,
-                                bsfit__asm_sums *sums) {
-  const double *U = f->U, *inv = f->inv;
-  size_t n = f->nraw, s = (size_t)p, k, last = last_span(U, n, p);
-  double acc[(BSFIT_MAX_DEGREE + 1) * (BSFIT_MAX_DEGREE + 1)];
-  double racc[(BSFIT_MAX_DEGREE + 1) * 4];
-  double N[BSFIT_MAX_DEGREE + 1], wN[BSFIT_MAX_DEGREE + 1];
-  double lo = 1.0, hi = 0.0, a = U[p], b = U[n], bad = 0.0, spread = 0.0;
-  int badw = 0, have = 0, i, j, c;
-  for (k = 0; k < m; k++) {
-    const double *q = pts + k * (size_t)dim;
-    double x = f->periodic ? wrap_param(u[k], a, b) : u[k], wk = w ? w[k] : 1.0;
-    if (!(x >= lo && x < hi)) {
-      if (have) flush_span(f, s, p, dim, acc, racc);
-      s = next_span(U, n, p, s, x);
-      span_bounds(U, p, last, s, &lo, &hi);
-      if (x != x) lo = 1.0, hi = 0.0; /* a NaN parameter: search again next time */
-      inv = f->inv + (s - (size_t)p) * f->tri;
-      for (i = 0; i < (p + 1) * (p + 1); i++) acc[i] = 0.0;
-      for (i = 0; i < (p + 1) * dim; i++) racc[i] = 0.0;
-      have = 1;
-    }
-    basis_inv(U, inv, s, x, p, N);
-    bad += x * 0.0 + wk * 0.0;
-    badw |= !(wk > 0.0);
-    for (c = 0; c < dim; c++) {
-      bad += q[c] * 0.0;
-      spread += fabs(q[c] - pts[c]);
-    }
-    for (i = 0; i <= p; i++) wN[i] = wk * N[i];
-    for (i = 0; i <= p; i++)
-      for (j = 0; j <= i; j++) acc[i * (p + 1) + j] += wN[i] * N[j];
-    for (i = 0; i <= p; i++)
-      for (c = 0; c < dim; c++) racc[i * dim + c] += wN[i] * q[c];
-  }
-  if (have) flush_span(f, s, p, dim, acc, racc);
-  sums->bad = bad;
-  sums->spread = spread;
-  sums->badw = badw;
-}
-
-/* The common case, cubic 2D, written out: per span, scalar accumulators that stay in
-** registers while the inner loop runs over the points of that span. */
-#define CUBIC_BASIS(x)                                                                   \
-  do {                                                                                   \
-    double l1 = (x) - U0, l2 = (x) - Um1, l3 = (x) - Um2;                                \
-    double r1 = U1 - (x), r2 = U2 - (x), r3 = U3 - (x), t, sv;                           \
-    double b0 = r1 * iv[0], b1 = l1 * iv[0], b2;                                         \
-    t = b0 * iv[1];                                                                      \
-    b0 = r1 * t;                                                                         \
-    sv = l2 * t;                                                                         \
-    t = b1 * iv[2];                                                                      \
-    b1 = sv + r2 * t;                                                                    \
-    b2 = l1 * t;                                                                         \
-    t = b0 * iv[3];                                                                      \
-    N0 = r1 * t;                                                                         \
-    sv = l3 * t;                                                                         \
-    t = b1 * iv[4];                                                                      \
-    N1 = sv + r2 * t;                                                                    \
-    sv = l2 * t;                                                                         \
-    t = b2 * iv[5];                                                                      \
-    N2 = sv + r3 * t;                                                                    \
-    N3 = l1 * t;                                                                         \
-  } while (0)
-
-static void assemble_cubic2(bsfit_fitter *f, const double *pts, size_t m, const double *u,
-                            const double *w, bsfit__asm_sums *sums) {
-  const double *U = f->U;
-  size_t n = f->nraw, s = 3, k = 0, last = last_span(U, n, 3), ld = 4;
-  double a = U[3], b = U[n], bad = 0.0, spread = 0.0, qx0 = pts[0], qy0 = pts[1];
-  int badw = 0, per = f->periodic;
-  while (k < m) {
-    double x = per ? wrap_param(u[k], a, b) : u[k], lo, hi;
-    double U0, U1, U2, U3, Um1, Um2, N0, N1, N2, N3;
-    double a00 = 0, a10 = 0, a11 = 0, a20 = 0, a21 = 0, a22 = 0, a30 = 0, a31 = 0, a32 = 0,
-           a33 = 0, rx0 = 0, rx1 = 0, rx2 = 0, rx3 = 0, ry0 = 0, ry1 = 0, ry2 = 0, ry3 = 0;
-    const double *iv;
-    double *B;
-    s = next_span(U, n, 3, s, x);
-    span_bounds(U, 3, last, s, &lo, &hi);
-    iv = f->inv + (s - 3) * 6;
-    U0 = U[s], U1 = U[s + 1], U2 = U[s + 2], U3 = U[s + 3], Um1 = U[s - 1], Um2 = U[s - 2];
-    do {
-      double wk = w ? w[k] : 1.0, qx = pts[2 * k], qy = pts[2 * k + 1], w0, w1, w2, w3;
-      CUBIC_BASIS(x);
-      bad += x * 0.0 + wk * 0.0 + qx * 0.0 + qy * 0.0;
-      badw |= !(wk > 0.0);
-      spread += fabs(qx - qx0) + fabs(qy - qy0);
-      w0 = wk * N0, w1 = wk * N1, w2 = wk * N2, w3 = wk * N3;
-      a00 += w0 * N0, a10 += w1 * N0, a11 += w1 * N1, a20 += w2 * N0, a21 += w2 * N1;
-      a22 += w2 * N2, a30 += w3 * N0, a31 += w3 * N1, a32 += w3 * N2, a33 += w3 * N3;
-      rx0 += w0 * qx, rx1 += w1 * qx, rx2 += w2 * qx, rx3 += w3 * qx;
-      ry0 += w0 * qy, ry1 += w1 * qy, ry2 += w2 * qy, ry3 += w3 * qy;
-      if (++k == m) break;
-      x = per ? wrap_param(u[k], a, b) : u[k];
-    } while (x >= lo && x < hi);
-    B = f->band + (s - 3) * ld; /* column s-3 of the lower band */
-    B[0] += a00, B[1] += a10, B[2] += a20, B[3] += a30;
-    B[ld + 0] += a11, B[ld + 1] += a21, B[ld + 2] += a31;
-    B[2 * ld + 0] += a22, B[2 * ld + 1] += a32;
-    B[3 * ld + 0] += a33;
-    B = f->rhs + s - 3;
-    B[0] += rx0, B[1] += rx1, B[2] += rx2, B[3] += rx3;
-    B += n;
-    B[0] += ry0, B[1] += ry1, B[2] += ry2, B[3] += ry3;
-    f->occ[s - 3] = 1;
-  }
-  sums->bad = bad;
-  sums->spread = spread;
-  sums->badw = badw;
-}
-
-void bsfit__fit_assemble(bsfit_fitter *f, const double *pts, size_t m, int dim, const double *u,
-                         const double *w, bsfit__asm_sums *sums) {
-  memset(f->band, 0, (size_t)(f->p + 1) * f->nraw * sizeof(double));
-  memset(f->rhs, 0, (size_t)dim * f->nraw * sizeof(double));
-  memset(f->occ, 0, f->nraw);
-  if (f->p == 3 && dim == 2) assemble_cubic2(f, pts, m, u, w, sums);
-  else if (f->p == 3 && dim == 3) assemble_kernel(f, pts, m, 3, u, w, 3, sums);
-  else assemble_kernel(f, pts, m, dim, u, w, f->p, sums);
-}
-
-typedef struct resid_sums {
-  double wss, wsum, max;
-  size_t imax;
-} resid_sums;
-
-/* Second pass: distances |Q_k - C(u_k)| with the solved control points (expanded). */
-FIT_INLINE void residual_kernel(const bsfit_fitter *f, const double *ctrl, const double *pts,
-                                size_t m, const int dim, const double *u, const double *w,
-                                const int p, double *res, resid_sums *out) {
-  const double *U = f->U, *inv = f->inv;
-  size_t n = f->nraw, s = (size_t)p, k, last = last_span(U, n, p);
-  double N[BSFIT_MAX_DEGREE + 1], lo = 1.0, hi = 0.0, a = U[p], b = U[n];
-  double wss = 0.0, wsum = 0.0, mx = -1.0;
-  size_t imax = 0;
-  int i, c;
-  for (k = 0; k < m; k++) {
-    const double *q = pts + k * (size_t)dim;
-    double x = f->periodic ? wrap_param(u[k], a, b) : u[k], wk = w ? w[k] : 1.0, r2 = 0.0, r;
-    if (!(x >= lo && x < hi)) {
-      s = next_span(U, n, p, s, x);
-      span_bounds(U, p, last, s, &lo, &hi);
-      inv = f->inv + (s - (size_t)p) * f->tri;
-    }
-    basis_inv(U, inv, s, x, p, N);
-    for (c = 0; c < dim; c++) {
-      double v = q[c];
-      for (i = 0; i <= p; i++) v -= N[i] * ctrl[(s - (size_t)p + (size_t)i) * (size_t)dim + (size_t)c];
-      r2 += v * v;
-    }
-    r = sqrt(r2);
-    if (res) res[k] = r;
-    wss += wk * r2;
-    wsum += wk;
-    if (r > mx) {
-      mx = r;
-      imax = k;
-    }
-  }
-  out->wss = wss;
-  out->wsum = wsum;
-  out->max = mx < 0.0 ? 0.0 : mx;
-  out->imax = imax;
-}
-
-static void residual_cubic2(const bsfit_fitter *f, const double *ctrl, const double *pts,
-                            size_t m, const double *u, const double *w, double *res,
-                            resid_sums *out) {
-  const double *U = f->U;
-  size_t n = f->nraw, s = 3, k = 0, last = last_span(U, n, 3), imax = 0;
-  double a = U[3], b = U[n], wss = 0.0, wsum = 0.0, mx = -1.0;
-  int per = f->periodic;
-  while (k < m) {
-    double x = per ? wrap_param(u[k], a, b) : u[k], lo, hi;
-    double U0, U1, U2, U3, Um1, Um2, N0, N1, N2, N3;
-    const double *iv, *P;
-    double px0, px1, px2, px3, py0, py1, py2, py3;
-    s = next_span(U, n, 3, s, x);
-    span_bounds(U, 3, last, s, &lo, &hi);
-    iv = f->inv + (s - 3) * 6;
-    U0 = U[s], U1 = U[s + 1], U2 = U[s + 2], U3 = U[s + 3], Um1 = U[s - 1], Um2 = U[s - 2];
-    P = ctrl + (s - 3) * 2;
-    px0 = P[0], py0 = P[1], px1 = P[2], py1 = P[3], px2 = P[4], py2 = P[5], px3 = P[6], py3 = P[7];
-    do {
-      double wk = w ? w[k] : 1.0, dx, dy, dd, r;
-      CUBIC_BASIS(x);
-      dx = pts[2 * k] - (N0 * px0 + N1 * px1 + N2 * px2 + N3 * px3);
-      dy = pts[2 * k + 1] - (N0 * py0 + N1 * py1 + N2 * py2 + N3 * py3);
-      dd = dx * dx + dy * dy;
-      r = sqrt(dd);
-      if (res) res[k] = r;
-      wss += wk * dd;
-      wsum += wk;
-      if (r > mx) mx = r, imax = k;
-      if (++k == m) break;
-      x = per ? wrap_param(u[k], a, b) : u[k];
-    } while (x >= lo && x < hi);
-  }
-  out->wss = wss;
-  out->wsum = wsum;
-  out->max = mx < 0.0 ? 0.0 : mx;
-  out->imax = imax;
-}
-
-static void residuals(const bsfit_fitter *f, const double *ctrl, const double *pts, size_t m,
-                      int dim, const double *u, const double *w, double *res, resid_sums *out) {
-  if (f->p == 3 && dim == 2) residual_cubic2(f, ctrl, pts, m, u, w, res, out);
-  else if (f->p == 3 && dim == 3) residual_kernel(f, ctrl, pts, m, 3, u, w, 3, res, out);
-  else residual_kernel(f, ctrl, pts, m, dim, u, w, f->p, res, out);
 }
 
 /* }====================================================================== */
@@ -646,16 +344,29 @@ static bsfit_err check_fit_args(const bsfit_fitter *f, const double *pts, size_t
 }
 
 /* Knots of this fit from the rule (fixed knots were loaded at configuration). */
+/* Knots of this fit from the rule (fixed knots were loaded at configuration). The
+** per-span data is recomputed only when the knots moved: refits on the same parameters
+** (reweighting, several data sets) skip it. */
 static bsfit_err place_fit_knots(bsfit_fitter *f, const double *u, size_t m, bsfit_status *st) {
   bsfit_err e;
+  double *dst = f->periodic ? f->period : f->U;
+  size_t nplaced = f->periodic ? f->count + 1 : f->nk;
   if (f->user_knots) return BSFIT_OK;
-  e = bsfit_knots_place(f->rule, u, m, f->p, f->count, f->periodic ? f->period : f->U, st);
-  if (e != BSFIT_OK && e != BSFIT_EEMPTYSPAN) return e;
+  if (f->fitted) memcpy(f->work, dst, nplaced * sizeof(double)); /* work holds >= nk */
+  e = bsfit__knots_place_rule(f->rule, u, m, f->p, f->count, dst, st);
+  if (e != BSFIT_OK) {
+    f->fitted = 0;
+    return e;
+  }
+  if (f->fitted && memcmp(f->work, dst, nplaced * sizeof(double)) == 0) return BSFIT_OK;
   if (f->periodic) {
     e = bsfit_knots_periodic(f->p, f->count, f->period, f->U, st);
-    if (e != BSFIT_OK) return e;
+    if (e != BSFIT_OK) {
+      f->fitted = 0;
+      return e;
+    }
   }
-  bsfit__fit_inverses(f);
+  bsfit__fit_prepare_spans(f);
   f->fitted = 1;
   return BSFIT_OK;
 }
@@ -697,17 +408,36 @@ static bsfit_err fit_solve(bsfit_fitter *f, const double *pts, size_t m, int dim
   return BSFIT_OK;
 }
 
+/* Do all points coincide? Scans only until the first point differing from Q_0. */
+static int all_coincide(const double *pts, size_t m, int dim) {
+  size_t k, c, d = (size_t)dim;
+  for (k = 1; k < m; k++)
+    for (c = 0; c < d; c++)
+      if (pts[k * d + c] != pts[c]) return 0;
+  return 1;
+}
+
+/* Assembly and its checks: the sums are finite iff every input was (NaN and Inf
+** propagate into them), so one O(n) scan replaces a per-point test. */
+static bsfit_err assemble_checked(bsfit_fitter *f, const double *pts, size_t m, int dim,
+                                  const double *u, const double *w, bsfit_status *st) {
+  int badw = bsfit__fit_assemble(f, pts, m, dim, u, w);
+  if (badw || !bsfit__all_finite(f->band, (size_t)(f->p + 1) * f->nraw) ||
+      !bsfit__all_finite(f->rhs, (size_t)dim * f->nraw))
+    return input_error(pts, m, dim, u, w, st);
+  if (all_coincide(pts, m, dim))
+    return bsfit__fail(st, BSFIT_EDEGENERATE, "all %zu points coincide", m);
+  return BSFIT_OK;
+}
+
 static bsfit_err fit_body(bsfit_fitter *f, const double *pts, size_t m, int dim, const double *u,
                           const double *w, bsfit_curve *out, bsfit_fit_report *rep,
                           double *res, bsfit_status *st) {
-  bsfit__asm_sums sums;
-  resid_sums rs;
+  double rms, max;
+  size_t imax;
   bsfit_err e = place_fit_knots(f, u, m, st);
-  if (e != BSFIT_OK) return e;
-  bsfit__fit_assemble(f, pts, m, dim, u, w, &sums);
-  if (sums.bad != 0.0 || sums.badw) return input_error(pts, m, dim, u, w, st);
-  if (sums.spread == 0.0) return bsfit__fail(st, BSFIT_EDEGENERATE, "all %zu points coincide", m);
-  e = prepare_out(f, dim, out, st);
+  if (e == BSFIT_OK) e = assemble_checked(f, pts, m, dim, u, w, st);
+  if (e == BSFIT_OK) e = prepare_out(f, dim, out, st);
   if (e == BSFIT_OK) e = fit_solve(f, pts, m, dim, out, rep, st);
   if (e != BSFIT_OK) return e;
   if (!bsfit__all_finite(out->ctrl, f->nraw * (size_t)dim))
@@ -715,11 +445,12 @@ static bsfit_err fit_body(bsfit_fitter *f, const double *pts, size_t m, int dim,
                        "numerically singular");
   memcpy(out->knots, f->U, f->nk * sizeof(double));
   out->periodic = f->periodic;
-  residuals(f, out->ctrl, pts, m, dim, u, w, res, &rs);
+  if (rep == NULL && res == NULL) return bsfit__ok(st); /* nobody reads the residuals */
+  bsfit__fit_residuals(f, out->ctrl, pts, m, dim, u, w, res, &rms, &max, &imax);
   if (rep) {
-    rep->rms = rs.wsum > 0.0 ? sqrt(rs.wss / rs.wsum) : 0.0;
-    rep->max = rs.max;
-    rep->max_index = rs.imax;
+    rep->rms = rms;
+    rep->max = max;
+    rep->max_index = imax;
     rep->m = m;
     rep->first_empty_span = 0;
     (void)empty_span_error(f, BSFIT_OK, NULL, &rep->n_empty_spans, &rep->first_empty_span);

@@ -1,6 +1,7 @@
 /*
 ** fit_internal.h
-** Private helpers shared by param.c, knot_placement.c, fit.c, periodic.c and linalg.c:
+** Private helpers shared by param.c, knot_placement.c, fit.c, fit_assembly.c, periodic.c and
+** linalg.c:
 ** the LAPACKE wrappers (linalg.c is the only file calling LAPACKE), the fitter's layout
 ** and the span-by-span kernels. Not part of the public API.
 */
@@ -23,7 +24,8 @@ bsfit_err bsfit__pb_factor(size_t n, int kd, double *ab, size_t ldab, bsfit_stat
 bsfit_err bsfit__pb_solve(size_t n, int kd, const double *ab, size_t ldab, size_t nrhs,
                           double *b, size_t ldb, bsfit_status *st);
 /* Reciprocal 1-norm condition estimate of the factored band given the original 1-norm
-** (dlacn2 + dpbtrs, O(n kd) per step); work: 2n doubles, iwork: n ints. 0 on failure. */
+** (dlacn2 + band substitutions, O(n kd) per step); work: 3n doubles, iwork: n ints.
+** 0 on failure. */
 double bsfit__pb_rcond(size_t n, int kd, const double *ab, size_t ldab, double anorm,
                        double *work, int *iwork);
 /* Dense symmetric positive definite, lower, column-major. */
@@ -46,13 +48,17 @@ bsfit_err bsfit__gb_solve(size_t n, int kl, int ku, double *ab, size_t ldab, int
 /* Number of spans [T[k], T[k+1]) (k = 0..K-1) of positive length holding no parameter of
 ** the sorted u; `periodic`: parameters taken modulo T[K]-T[0]; otherwise the last span is
 ** closed on the right. *first receives the first empty k (when the count is > 0). */
+/* bsfit_knots_place without the empty-span count (the fitter reads occupancy off its
+** assembly instead): argument checks, the rule, the knot vector's validity. */
+bsfit_err bsfit__knots_place_rule(bsfit_knot_rule rule, const double *u, size_t m, int p,
+                                  size_t n, double *U, bsfit_status *st);
 size_t bsfit__count_empty(const double *T, size_t K, const double *u, size_t m, int periodic,
                           size_t *first);
 
 /* }==================================================================== */
 
 /* {====================================================================
-** fit.c / periodic.c: the fitter
+** fit.c / fit_assembly.c / periodic.c: the fitter
 ** ===================================================================== */
 
 struct bsfit_fitter {
@@ -73,6 +79,7 @@ struct bsfit_fitter {
   double *U;      /* nk knots */
   double *period; /* N+1 (periodic) */
   double *inv;    /* (nraw - p) * tri */
+  double *poly;   /* (nraw - p) * bsfit__fit_poly_stride(p) */
   double *band;   /* (p+1) * nraw, lower band storage */
   double *rhs;    /* nraw * 4, column-major (coordinate k at rhs + k*nraw) */
   double *work;   /* 3 * nraw */
@@ -85,18 +92,21 @@ struct bsfit_fitter {
   unsigned char *occ; /* nraw spans touched by data */
 };
 
-/* Accumulated per-fit sums of the assembly pass. */
-typedef struct bsfit__asm_sums {
-  double bad;  /* NaN when a coordinate, parameter or weight was not finite */
-  double spread; /* sum of |Q_k - Q_0| coordinates: 0 iff all points coincide */
-  int badw;    /* a weight was <= 0 or NaN */
-} bsfit__asm_sums;
-
-/* Reciprocal knot differences of every span (0 for zero differences). */
-void bsfit__fit_inverses(bsfit_fitter *f);
-/* Assembly pass: band, rhs (raw unknowns), occupancy, validation sums. */
-void bsfit__fit_assemble(bsfit_fitter *f, const double *pts, size_t m, int dim, const double *u,
-                         const double *w, bsfit__asm_sums *sums);
+/* fit_assembly.c: the passes over the points, span by span. */
+/* Doubles per span in `poly` (degrees 1..3: the basis functions' power coefficients, then
+** the span's centre and inverse half-length), 0 for higher degrees. */
+size_t bsfit__fit_poly_stride(int p);
+/* Per-span data of the current knots: reciprocal knot differences (and `poly`). */
+void bsfit__fit_prepare_spans(bsfit_fitter *f);
+/* Assembly: band, rhs (raw unknowns), occupancy; returns nonzero when a weight is <= 0
+** or NaN. Other non-finite input shows up as non-finite band or rhs entries. */
+int bsfit__fit_assemble(bsfit_fitter *f, const double *pts, size_t m, int dim, const double *u,
+                        const double *w);
+/* Residual pass with the solved (raw) control points: distances into res (may be NULL),
+** weighted RMS, maximum and its index. */
+void bsfit__fit_residuals(const bsfit_fitter *f, const double *ctrl, const double *pts,
+                          size_t m, int dim, const double *u, const double *w, double *res,
+                          double *wrms, double *max, size_t *imax);
 /* periodic.c: folds the raw system and solves it; writes the N distinct control points,
 ** row-major, into ctrl; *rcond when rcond != NULL. */
 bsfit_err bsfit__periodic_solve(bsfit_fitter *f, int dim, double *ctrl, double *rcond,

@@ -54,12 +54,11 @@ size_t bsfit__count_empty(const double *T, size_t K, const double *u, size_t m, 
 
 static bsfit_err check_sorted(const double *u, size_t m, bsfit_status *st) {
   size_t k;
-  double bad = 0.0;
-  int decr = 0;
-  /* one branch-free sweep; the precise scan below only runs when something is wrong */
-  for (k = 0; k < m; k++) bad += u[k] * 0.0;
-  for (k = 1; k < m; k++) decr |= u[k] < u[k - 1];
-  if (bad == 0.0 && !decr) return BSFIT_OK;
+  int ok = m == 0 || (isfinite(u[0]) && isfinite(u[m - 1]));
+  /* one branch-free sweep (a NaN fails its comparisons; sorted with finite ends means all
+  ** finite); the precise scan below only runs when something is wrong */
+  for (k = 1; k < m; k++) ok &= u[k] >= u[k - 1];
+  if (ok) return BSFIT_OK;
   for (k = 0; k < m; k++)
     if (!isfinite(u[k])) return bsfit__fail(st, BSFIT_ENONFINITE, "parameter %zu is not finite", k);
   for (k = 1; k < m; k++)
@@ -208,9 +207,8 @@ static bsfit_err check_period_mult(const double *T, size_t N, int p, bsfit_statu
   return BSFIT_OK;
 }
 
-bsfit_err bsfit_knots_place(bsfit_knot_rule rule, const double *u, size_t m, int p, size_t n,
-                            double *U, bsfit_status *st) {
-  size_t first = 0, empty;
+bsfit_err bsfit__knots_place_rule(bsfit_knot_rule rule, const double *u, size_t m, int p,
+                                  size_t n, double *U, bsfit_status *st) {
   bsfit_err e = check_place_args(rule, u, m, p, n, U, st);
   if (e != BSFIT_OK) return e;
   switch (rule) {
@@ -220,9 +218,16 @@ bsfit_err bsfit_knots_place(bsfit_knot_rule rule, const double *u, size_t m, int
     case BSFIT_KNOTS_PERIODIC_AVERAGING: place_periodic_averaging(u, m, p, n, U); break;
     default: place_periodic_uniform(u, n, U); break;
   }
+  if (bsfit_knot_rule_closed(rule)) return check_period_mult(U, n, p, st);
+  return bsfit_knots_validate(U, n + (size_t)p + 1, p, n, st);
+}
+
+bsfit_err bsfit_knots_place(bsfit_knot_rule rule, const double *u, size_t m, int p, size_t n,
+                            double *U, bsfit_status *st) {
+  size_t first = 0, empty;
+  bsfit_err e = bsfit__knots_place_rule(rule, u, m, p, n, U, st);
+  if (e != BSFIT_OK) return e;
   if (bsfit_knot_rule_closed(rule)) {
-    e = check_period_mult(U, n, p, st);
-    if (e != BSFIT_OK) return e;
     empty = bsfit__count_empty(U, n, u, m, 1, &first);
     if (empty > 0)
       return bsfit__fail(st, BSFIT_EEMPTYSPAN,
@@ -230,8 +235,6 @@ bsfit_err bsfit_knots_place(bsfit_knot_rule rule, const double *u, size_t m, int
                          U[first], U[first + 1], empty);
     return bsfit__ok(st);
   }
-  e = bsfit_knots_validate(U, n + (size_t)p + 1, p, n, st);
-  if (e != BSFIT_OK) return e;
   empty = bsfit__count_empty(U + p, n - (size_t)p, u, m, 0, &first);
   if (empty > 0)
     return bsfit__fail(st, BSFIT_EEMPTYSPAN, "knot span %zu [%g, %g) holds no parameter (%zu empty)",

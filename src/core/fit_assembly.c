@@ -1,0 +1,528 @@
+/*
+** fit_assembly.c
+** The fitter's two passes over the points, span by span (SPEC 2.3): the banded normal
+** equations N^T W N P = N^T W Q, and the residuals |Q_k - C(u_k)| of the solved curve.
+**
+** Degrees 1..3 (nearly every fit) work with power moments. On span s the p+1 non-zero
+** basis functions are polynomials in the local variable t = (u - mid) / half, |t| <= 1
+** inside the span: N_i = sum_a C_ia t^a. Hence
+**   sum_k w_k N_i(t_k) N_j(t_k) = sum_ab C_ia C_jb M_{a+b},   M_c = sum_k w_k t_k^c,
+**   sum_k w_k N_i(t_k) Q_k      = sum_a  C_ia R_a,            R_a = sum_k w_k t_k^a Q_k,
+** so a point costs its 2p powers of t and (p+1) dim products instead of a basis
+** evaluation and (p+1)^2 products; C comes once per span (Cox-de Boor run on linear
+** polynomials). The residual pass evaluates each span's curve as a polynomial in t by
+** Horner. Accuracy: a cubic bounded by 1 on [-1, 1] has power coefficients no larger than
+** the Chebyshev ones (4), so forming C H C^T loses at most a few hundred ulps relative to
+** the matrix norm; the test suite's 1e-10 reproduction and 1e-9 dense agreement hold.
+** Higher degrees evaluate the basis point by point (NURBS Book A2.2).
+**
+** Neither pass validates its input: NaN or Inf in a point, parameter or weight reaches the
+** band or the right-hand sides, which fit.c checks once (O(n), not O(m)); non-positive
+** weights are flagged here because they would pass unnoticed.
+*/
+#include "fit_internal.h"
+
+#include <math.h>
+#include <string.h>
+
+#if defined(__GNUC__)
+#  define FIT_INLINE static inline __attribute__((always_inline))
+#else
+#  define FIT_INLINE static inline
+#endif
+
+#define MOMENT_MAX_DEGREE 3
+
+/* {======================================================================
+** Per-span preparation: reciprocal knot differences and polynomial coefficients
+** ======================================================================= */
+
+size_t bsfit__fit_poly_stride(int p) {
+  return p <= MOMENT_MAX_DEGREE ? (size_t)(p + 1) * (size_t)(p + 1) + 2 : 0;
+}
+
+/* Power coefficients C[i*(p+1) + a] of the basis functions N_{s-p+i}, in t with
+** u = mid + half t. Cox-de Boor on polynomials: left_j = u - U[s+1-j] and
+** right_j = U[s+j] - u are linear in t, the denominators come from inv. */
+FIT_INLINE void span_poly(const double *U, const double *inv, size_t s, const int p,
+                          double *C) {
+  double N[MOMENT_MAX_DEGREE + 1][MOMENT_MAX_DEGREE + 1], lc[MOMENT_MAX_DEGREE + 1],
+      rc[MOMENT_MAX_DEGREE + 1];
+  double mid = 0.5 * (U[s] + U[s + 1]), half = 0.5 * (U[s + 1] - U[s]);
+  int i, j, r, a;
+  memset(N, 0, sizeof N);
+  N[0][0] = 1.0;
+  for (j = 1; j <= p; j++) {
+    double saved[MOMENT_MAX_DEGREE + 1] = {0.0};
+    lc[j] = mid - U[s + 1 - (size_t)j];
+    rc[j] = U[s + (size_t)j] - mid;
+    for (r = 0; r < j; r++) {
+      double tmp[MOMENT_MAX_DEGREE + 1], iv = *inv++;
+      for (a = 0; a < j; a++) tmp[a] = N[r][a] * iv;
+      for (a = 0; a <= j; a++) { /* N_r = saved + right_{r+1} tmp, right = rc - half t */
+        N[r][a] = saved[a] + (a < j ? rc[r + 1] * tmp[a] : 0.0) - (a > 0 ? half * tmp[a - 1] : 0.0);
+      }
+      for (a = 0; a <= j; a++) /* saved = left_{j-r} tmp, left = lc + half t */
+        saved[a] = (a < j ? lc[j - r] * tmp[a] : 0.0) + (a > 0 ? half * tmp[a - 1] : 0.0);
+    }
+    for (a = 0; a <= j; a++) N[j][a] = saved[a];
+  }
+  for (i = 0; i <= p; i++)
+    for (a = 0; a <= p; a++) C[i * (p + 1) + a] = N[i][a];
+  C[(p + 1) * (p + 1)] = mid;
+  C[(p + 1) * (p + 1) + 1] = half > 0.0 ? 1.0 / half : 0.0; /* empty spans get no points */
+}
+
+void bsfit__fit_prepare_spans(bsfit_fitter *f) {
+  size_t s, p = (size_t)f->p, stride = bsfit__fit_poly_stride(f->p);
+  const double *U = f->U;
+  double *inv = f->inv;
+  /* the Cox-de Boor denominators U[s+r+1] - U[s+1-j+r] depend on the span only */
+  for (s = p; s < f->nraw; s++) {
+    size_t j, r;
+    for (j = 1; j <= p; j++)
+      for (r = 0; r < j; r++) {
+        double den = U[s + r + 1] - U[s + 1 - j + r];
+        *inv++ = den != 0.0 ? 1.0 / den : 0.0; /* 0/0 = 0 at repeated knots */
+      }
+  }
+  if (stride == 0) return;
+  for (s = p; s < f->nraw; s++) {
+    const double *iv = f->inv + (s - p) * f->tri;
+    double *C = f->poly + (s - p) * stride;
+    if (p == 3) span_poly(U, iv, s, 3, C); /* the common degree, unrolled */
+    else span_poly(U, iv, s, f->p, C);
+  }
+}
+
+/* }====================================================================== */
+
+/* {======================================================================
+** Span search
+** ======================================================================= */
+
+/* Last span of positive length: parameters at or beyond the domain's end belong to it. */
+static size_t last_span(const double *U, size_t n, int p) {
+  size_t last = n - 1;
+  while (last > (size_t)p && U[last] == U[n]) last--;
+  return last;
+}
+
+/* Bounds of the parameter interval handled by span s without a new search: the end
+** spans extend to infinity so extrapolated or end-point parameters stay in them. */
+FIT_INLINE void span_bounds(const double *U, int p, size_t last, size_t s, double *lo,
+                            double *hi) {
+  *lo = s == (size_t)p ? -INFINITY : U[s];
+  *hi = s >= last ? INFINITY : U[s + 1];
+}
+
+FIT_INLINE size_t next_span(const double *U, size_t n, int p, size_t s, double x) {
+  /* sorted parameters mostly move to the next span: try it before a binary search */
+  if (x >= U[s + 1] && s + 2 <= n && x < U[s + 2] && U[s + 2] > U[s + 1]) return s + 1;
+  return bsfit_knots_find_span(U, n, p, x);
+}
+
+FIT_INLINE double wrap_param(double x, double a, double b) {
+  double T = b - a, v;
+  if (x >= a && x < b) return x;
+  v = a + fmod(x - a, T);
+  if (v < a) v += T;
+  return v >= b ? a : v;
+}
+
+/* The next group of consecutive points in one span: its span and bounds. A NaN parameter
+** forms a group of its own (no comparison holds), and poisons the sums as it should. */
+typedef struct span_walk {
+  const double *U;
+  size_t n, last, s;
+  double a, b;
+  int p, periodic;
+} span_walk;
+
+FIT_INLINE void walk_init(span_walk *sw, const bsfit_fitter *f) {
+  sw->U = f->U;
+  sw->n = f->nraw;
+  sw->p = f->p;
+  sw->s = (size_t)f->p;
+  sw->last = last_span(f->U, f->nraw, f->p);
+  sw->a = f->U[f->p];
+  sw->b = f->U[f->nraw];
+  sw->periodic = f->periodic;
+}
+
+FIT_INLINE double walk_param(const span_walk *sw, const double *u, size_t k) {
+  return sw->periodic ? wrap_param(u[k], sw->a, sw->b) : u[k];
+}
+
+FIT_INLINE void walk_to(span_walk *sw, double x, double *lo, double *hi) {
+  sw->s = next_span(sw->U, sw->n, sw->p, sw->s, x);
+  span_bounds(sw->U, sw->p, sw->last, sw->s, lo, hi);
+}
+
+/* }====================================================================== */
+
+/* {======================================================================
+** Degrees 1..3: power moments
+** ======================================================================= */
+
+/* pw[a] = w t^a, a = 0..2p, by a shallow product tree (no serial chain of 2p products) */
+FIT_INLINE void moment_powers(double w, double t, const int p, double *pw) {
+  double t2 = t * t, wt = w * t;
+  int a;
+  if (p == 3) {
+    double t4 = t2 * t2;
+    pw[0] = w, pw[1] = wt, pw[2] = w * t2, pw[3] = wt * t2;
+    pw[4] = w * t4, pw[5] = wt * t4, pw[6] = pw[2] * t4;
+    return;
+  }
+  pw[0] = w;
+  for (a = 1; a <= 2 * p; a++) pw[a] = pw[a - 1] * t;
+  (void)t2, (void)wt;
+}
+
+/* Adds one span's moments to the band (lower storage) and the right-hand sides:
+** A += C H C^T with H_ab = M_{a+b}, rhs += C R. */
+FIT_INLINE void flush_moments(bsfit_fitter *f, size_t s, const int p, const int dim,
+                              const double *C, const double *M, const double *R) {
+  size_t ldab = (size_t)p + 1, first = s - (size_t)p, n = f->nraw;
+  double T[(MOMENT_MAX_DEGREE + 1) * (MOMENT_MAX_DEGREE + 1)];
+  int i, j, a, b, c;
+  for (a = 0; a <= p; a++) /* T = H C^T */
+    for (j = 0; j <= p; j++) {
+      double v = 0.0;
+      for (b = 0; b <= p; b++) v += M[a + b] * C[j * (p + 1) + b];
+      T[a * (p + 1) + j] = v;
+    }
+  for (i = 0; i <= p; i++)
+    for (j = 0; j <= i; j++) {
+      double v = 0.0;
+      for (a = 0; a <= p; a++) v += C[i * (p + 1) + a] * T[a * (p + 1) + j];
+      f->band[(size_t)(i - j) + (first + (size_t)j) * ldab] += v;
+    }
+  for (i = 0; i <= p; i++)
+    for (c = 0; c < dim; c++) {
+      double v = 0.0;
+      for (a = 0; a <= p; a++) v += C[i * (p + 1) + a] * R[a * 4 + c];
+      f->rhs[(size_t)c * n + first + (size_t)i] += v;
+    }
+  f->occ[first] = 1;
+}
+
+FIT_INLINE int moment_assemble(bsfit_fitter *f, const double *pts, size_t m, const int dim,
+                               const double *u, const double *w, const int p) {
+  size_t k = 0, stride = bsfit__fit_poly_stride(p);
+  span_walk sw;
+  int badw = 0, a, c;
+  walk_init(&sw, f);
+  while (k < m) {
+    double x = walk_param(&sw, u, k), lo, hi, mid, scale;
+    double M[2 * MOMENT_MAX_DEGREE + 1] = {0.0}, R[(MOMENT_MAX_DEGREE + 1) * 4] = {0.0};
+    const double *C;
+    walk_to(&sw, x, &lo, &hi);
+    C = f->poly + (sw.s - (size_t)p) * stride;
+    mid = C[(p + 1) * (p + 1)];
+    scale = C[(p + 1) * (p + 1) + 1];
+    do {
+      const double *q = pts + k * (size_t)dim;
+      double wk = w ? w[k] : 1.0, t = (x - mid) * scale, pw[2 * MOMENT_MAX_DEGREE + 1];
+      badw |= !(wk > 0.0);
+      moment_powers(wk, t, p, pw);
+      for (a = 0; a <= 2 * p; a++) M[a] += pw[a];
+      for (a = 0; a <= p; a++)
+        for (c = 0; c < dim; c++) R[a * 4 + c] += pw[a] * q[c];
+      if (++k == m) break;
+      x = walk_param(&sw, u, k);
+    } while (x >= lo && x < hi);
+    flush_moments(f, sw.s, p, dim, C, M, R);
+  }
+  return badw;
+}
+
+typedef struct resid_acc {
+  double wss, wsum, max;
+  size_t imax;
+} resid_acc;
+
+FIT_INLINE void moment_residuals(const bsfit_fitter *f, const double *ctrl, const double *pts,
+                                 size_t m, const int dim, const double *u, const double *w,
+                                 const int p, double *res, resid_acc *out) {
+  size_t k = 0, stride = bsfit__fit_poly_stride(p), imax = 0;
+  double wss = 0.0, wsum = 0.0, mx = -1.0;
+  span_walk sw;
+  int i, a, c;
+  walk_init(&sw, f);
+  while (k < m) {
+    double x = walk_param(&sw, u, k), lo, hi, mid, scale;
+    double D[(MOMENT_MAX_DEGREE + 1) * 4];
+    const double *C, *P;
+    walk_to(&sw, x, &lo, &hi);
+    C = f->poly + (sw.s - (size_t)p) * stride;
+    P = ctrl + (sw.s - (size_t)p) * (size_t)dim;
+    mid = C[(p + 1) * (p + 1)];
+    scale = C[(p + 1) * (p + 1) + 1];
+    for (a = 0; a <= p; a++) /* the span's curve: D_a = sum_i C_ia P_i */
+      for (c = 0; c < dim; c++) {
+        double v = 0.0;
+        for (i = 0; i <= p; i++) v += C[i * (p + 1) + a] * P[i * dim + c];
+        D[a * 4 + c] = v;
+      }
+    do {
+      const double *q = pts + k * (size_t)dim;
+      double wk = w ? w[k] : 1.0, t = (x - mid) * scale, dd = 0.0, r;
+      for (c = 0; c < dim; c++) {
+        double v = D[p * 4 + c], d;
+        for (a = p - 1; a >= 0; a--) v = v * t + D[a * 4 + c];
+        d = q[c] - v;
+        dd += d * d;
+      }
+      r = sqrt(dd);
+      if (res) res[k] = r;
+      wss += wk * dd;
+      wsum += wk;
+      if (r > mx) mx = r, imax = k;
+      if (++k == m) break;
+      x = walk_param(&sw, u, k);
+    } while (x >= lo && x < hi);
+  }
+  out->wss = wss;
+  out->wsum = wsum;
+  out->max = mx < 0.0 ? 0.0 : mx;
+  out->imax = imax;
+}
+
+#if defined(__GNUC__)
+/* Cubic 2D, the shape of nearly every section, with pairs of doubles (GCC/Clang vector
+** extensions: SSE2 on x86-64, NEON on arm64, plain pairs elsewhere): the 15 running sums
+** fit in 8 registers instead of spilling to the stack, and a point is 16 pair operations. */
+typedef double pair __attribute__((vector_size(16)));
+
+static int cubic2_assemble(bsfit_fitter *f, const double *pts, size_t m, const double *u,
+                           const double *w) {
+  size_t k = 0, stride = bsfit__fit_poly_stride(3);
+  span_walk sw;
+  int badw = 0;
+  walk_init(&sw, f);
+  while (k < m) {
+    double x = walk_param(&sw, u, k), lo, hi, mid, scale, M[7], R[16];
+    pair m01 = {0.0, 0.0}, m23 = m01, m45 = m01, m6 = m01, x01 = m01, x23 = m01, y01 = m01,
+         y23 = m01;
+    const double *C;
+    walk_to(&sw, x, &lo, &hi);
+    C = f->poly + (sw.s - 3) * stride;
+    mid = C[16];
+    scale = C[17];
+    do {
+      double wk = w ? w[k] : 1.0, t = (x - mid) * scale, t2 = t * t, t4 = t2 * t2;
+      pair e01 = {wk, wk * t}, e23 = e01 * t2, e45 = e01 * t4, t4z = {t4, 0.0};
+      pair qx = {pts[2 * k], pts[2 * k]}, qy = {pts[2 * k + 1], pts[2 * k + 1]};
+      badw |= !(wk > 0.0);
+      m01 += e01, m23 += e23, m45 += e45, m6 += e23 * t4z;
+      x01 += e01 * qx, x23 += e23 * qx, y01 += e01 * qy, y23 += e23 * qy;
+      if (++k == m) break;
+      x = walk_param(&sw, u, k);
+    } while (x >= lo && x < hi);
+    M[0] = m01[0], M[1] = m01[1], M[2] = m23[0], M[3] = m23[1], M[4] = m45[0], M[5] = m45[1];
+    M[6] = m6[0];
+    R[0] = x01[0], R[4] = x01[1], R[8] = x23[0], R[12] = x23[1];
+    R[1] = y01[0], R[5] = y01[1], R[9] = y23[0], R[13] = y23[1];
+    flush_moments(f, sw.s, 3, 2, C, M, R);
+  }
+  return badw;
+}
+
+static void cubic2_residuals(const bsfit_fitter *f, const double *ctrl, const double *pts,
+                             size_t m, const double *u, const double *w, double *res,
+                             resid_acc *out) {
+  size_t k = 0, stride = bsfit__fit_poly_stride(3), imax = 0;
+  double wss = 0.0, wsum = 0.0, mx = -1.0;
+  span_walk sw;
+  int i, a;
+  walk_init(&sw, f);
+  while (k < m) {
+    double x = walk_param(&sw, u, k), lo, hi, mid, scale;
+    pair D[4];
+    const double *C, *P;
+    walk_to(&sw, x, &lo, &hi);
+    C = f->poly + (sw.s - 3) * stride;
+    P = ctrl + (sw.s - 3) * 2;
+    mid = C[16];
+    scale = C[17];
+    for (a = 0; a <= 3; a++) { /* the span's curve: D_a = sum_i C_ia P_i */
+      pair v = {0.0, 0.0};
+      for (i = 0; i <= 3; i++) {
+        pair pi = {P[2 * i], P[2 * i + 1]};
+        v += C[i * 4 + a] * pi;
+      }
+      D[a] = v;
+    }
+    do {
+      double wk = w ? w[k] : 1.0, t = (x - mid) * scale, dd, r;
+      pair q = {pts[2 * k], pts[2 * k + 1]}, d = ((D[3] * t + D[2]) * t + D[1]) * t + D[0];
+      d = q - d;
+      d *= d;
+      dd = d[0] + d[1];
+      r = sqrt(dd);
+      if (res) res[k] = r;
+      wss += wk * dd;
+      wsum += wk;
+      if (r > mx) mx = r, imax = k;
+      if (++k == m) break;
+      x = walk_param(&sw, u, k);
+    } while (x >= lo && x < hi);
+  }
+  out->wss = wss;
+  out->wsum = wsum;
+  out->max = mx < 0.0 ? 0.0 : mx;
+  out->imax = imax;
+}
+#endif
+
+/* }====================================================================== */
+
+/* {======================================================================
+** Any degree: basis functions point by point
+** ======================================================================= */
+
+/* The p+1 non-zero basis functions at u in span s (NURBS Book A2.2 with the divisions
+** replaced by the span's precomputed reciprocals; keep in step with basis.c). */
+FIT_INLINE void basis_inv(const double *U, const double *inv, size_t s, double u, int p,
+                          double *N) {
+  double left[BSFIT_MAX_DEGREE + 1], right[BSFIT_MAX_DEGREE + 1];
+  int j, r;
+  N[0] = 1.0;
+  for (j = 1; j <= p; j++) {
+    double saved = 0.0;
+    left[j] = u - U[s + 1 - (size_t)j];
+    right[j] = U[s + (size_t)j] - u;
+    for (r = 0; r < j; r++) {
+      double tmp = N[r] * *inv++;
+      N[r] = saved + right[r + 1] * tmp;
+      saved = left[j - r] * tmp;
+    }
+    N[j] = saved;
+  }
+}
+
+/* Adds one span's local sums to the band (lower storage) and the right-hand sides. */
+static void flush_basis(bsfit_fitter *f, size_t s, int p, int dim, const double *acc,
+                        const double *racc) {
+  size_t ldab = (size_t)p + 1, first = s - (size_t)p, n = f->nraw;
+  int i, j, c;
+  for (i = 0; i <= p; i++)
+    for (j = 0; j <= i; j++)
+      f->band[(size_t)(i - j) + (first + (size_t)j) * ldab] += acc[i * (p + 1) + j];
+  for (i = 0; i <= p; i++)
+    for (c = 0; c < dim; c++) f->rhs[(size_t)c * n + first + (size_t)i] += racc[i * dim + c];
+  f->occ[first] = 1;
+}
+
+static int basis_assemble(bsfit_fitter *f, const double *pts, size_t m, int dim,
+                          const double *u, const double *w) {
+  double acc[(BSFIT_MAX_DEGREE + 1) * (BSFIT_MAX_DEGREE + 1)];
+  double racc[(BSFIT_MAX_DEGREE + 1) * 4];
+  double N[BSFIT_MAX_DEGREE + 1], wN[BSFIT_MAX_DEGREE + 1];
+  size_t k = 0;
+  span_walk sw;
+  int p = f->p, badw = 0, i, j, c;
+  walk_init(&sw, f);
+  while (k < m) {
+    double x = walk_param(&sw, u, k), lo, hi;
+    const double *inv;
+    walk_to(&sw, x, &lo, &hi);
+    inv = f->inv + (sw.s - (size_t)p) * f->tri;
+    memset(acc, 0, (size_t)((p + 1) * (p + 1)) * sizeof(double));
+    memset(racc, 0, (size_t)((p + 1) * dim) * sizeof(double));
+    do {
+      const double *q = pts + k * (size_t)dim;
+      double wk = w ? w[k] : 1.0;
+      badw |= !(wk > 0.0);
+      basis_inv(sw.U, inv, sw.s, x, p, N);
+      for (i = 0; i <= p; i++) wN[i] = wk * N[i];
+      for (i = 0; i <= p; i++)
+        for (j = 0; j <= i; j++) acc[i * (p + 1) + j] += wN[i] * N[j];
+      for (i = 0; i <= p; i++)
+        for (c = 0; c < dim; c++) racc[i * dim + c] += wN[i] * q[c];
+      if (++k == m) break;
+      x = walk_param(&sw, u, k);
+    } while (x >= lo && x < hi);
+    flush_basis(f, sw.s, p, dim, acc, racc);
+  }
+  return badw;
+}
+
+static void basis_residuals(const bsfit_fitter *f, const double *ctrl, const double *pts,
+                            size_t m, int dim, const double *u, const double *w, double *res,
+                            resid_acc *out) {
+  double N[BSFIT_MAX_DEGREE + 1], wss = 0.0, wsum = 0.0, mx = -1.0;
+  size_t k = 0, imax = 0;
+  span_walk sw;
+  int p = f->p, i, c;
+  walk_init(&sw, f);
+  while (k < m) {
+    double x = walk_param(&sw, u, k), lo, hi;
+    const double *inv, *P;
+    walk_to(&sw, x, &lo, &hi);
+    inv = f->inv + (sw.s - (size_t)p) * f->tri;
+    P = ctrl + (sw.s - (size_t)p) * (size_t)dim;
+    do {
+      const double *q = pts + k * (size_t)dim;
+      double wk = w ? w[k] : 1.0, dd = 0.0, r;
+      basis_inv(sw.U, inv, sw.s, x, p, N);
+      for (c = 0; c < dim; c++) {
+        double v = q[c];
+        for (i = 0; i <= p; i++) v -= N[i] * P[i * dim + c];
+        dd += v * v;
+      }
+      r = sqrt(dd);
+      if (res) res[k] = r;
+      wss += wk * dd;
+      wsum += wk;
+      if (r > mx) mx = r, imax = k;
+      if (++k == m) break;
+      x = walk_param(&sw, u, k);
+    } while (x >= lo && x < hi);
+  }
+  out->wss = wss;
+  out->wsum = wsum;
+  out->max = mx < 0.0 ? 0.0 : mx;
+  out->imax = imax;
+}
+
+/* }====================================================================== */
+
+/* {======================================================================
+** Entry points: the common shapes get their own instances of the kernels
+** ======================================================================= */
+
+int bsfit__fit_assemble(bsfit_fitter *f, const double *pts, size_t m, int dim, const double *u,
+                        const double *w) {
+  int p = f->p;
+  memset(f->band, 0, (size_t)(p + 1) * f->nraw * sizeof(double));
+  memset(f->rhs, 0, (size_t)dim * f->nraw * sizeof(double));
+  memset(f->occ, 0, f->nraw);
+#if defined(__GNUC__)
+  if (p == 3 && dim == 2) return cubic2_assemble(f, pts, m, u, w);
+#endif
+  if (p == 3 && dim == 3) return moment_assemble(f, pts, m, 3, u, w, 3);
+  if (p <= MOMENT_MAX_DEGREE) return moment_assemble(f, pts, m, dim, u, w, p);
+  return basis_assemble(f, pts, m, dim, u, w);
+}
+
+void bsfit__fit_residuals(const bsfit_fitter *f, const double *ctrl, const double *pts,
+                          size_t m, int dim, const double *u, const double *w, double *res,
+                          double *wrms, double *max, size_t *imax) {
+  resid_acc acc;
+  int p = f->p;
+#if defined(__GNUC__)
+  if (p == 3 && dim == 2) cubic2_residuals(f, ctrl, pts, m, u, w, res, &acc);
+  else
+#endif
+  if (p == 3 && dim == 3) moment_residuals(f, ctrl, pts, m, 3, u, w, 3, res, &acc);
+  else if (p <= MOMENT_MAX_DEGREE) moment_residuals(f, ctrl, pts, m, dim, u, w, p, res, &acc);
+  else basis_residuals(f, ctrl, pts, m, dim, u, w, res, &acc);
+  *wrms = acc.wsum > 0.0 ? sqrt(acc.wss / acc.wsum) : 0.0;
+  *max = acc.max;
+  *imax = acc.imax;
+}
+
+/* }====================================================================== */
