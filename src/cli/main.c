@@ -400,6 +400,7 @@ int main(int argc, char **argv) {
   c.opts = defaults;
   c.opts.argv0 = argv[0];
   c.status = EXIT_SUCCESS;
+  (void)bsfit_blas_single_thread(); /* idle OpenBLAS workers would spin next to -j N */
   /* Options are read before the engine exists: they choose how it is built. */
   collectargs(&c);
   if (c.flags & HAS_ERROR) {

@@ -76,33 +76,60 @@ static moments run_moments(const contour *c, size_t first, size_t last) {
   return mo;
 }
 
-/* principal direction of the covariance (power iteration, started on `hint`) and the
-** variance left across it */
-static void fit_line(const contour *c, const moments *mo, const double *hint, side *sd) {
-  double cov[3][3], v[3], lam = 0, tr = 0;
-  int d, e, it;
-  for (d = 0; d < 3; d++) sd->centre[d] = mo->s[d] / mo->n;
-  for (d = 0; d < 3; d++)
-    for (e = 0; e < 3; e++) cov[d][e] = mo->ss[d][e] / mo->n - sd->centre[d] * sd->centre[e];
-  for (d = 0; d < 3; d++) {
-    v[d] = hint[d];
-    tr += cov[d][d];
+/* Unit principal direction of a 2 x 2 covariance [a b; b d] in closed form: of the two
+** eigenvector formulas for the larger eigenvalue, the longer one (the other may vanish);
+** an isotropic covariance has no principal direction, so the hint stands. */
+static double principal_2d(double a, double b, double d, const double *hint, double *v) {
+  double h = 0.5 * (a - d), lam = 0.5 * (a + d) + sqrt(h * h + b * b);
+  double x1 = lam - d, y1 = b, x2 = b, y2 = lam - a, n1 = x1 * x1 + y1 * y1,
+         n2 = x2 * x2 + y2 * y2, nrm;
+  if (n2 > n1) x1 = x2, y1 = y2, n1 = n2;
+  nrm = sqrt(n1);
+  if (!(nrm > 1e-300)) {
+    x1 = hint[0], y1 = hint[1], nrm = sqrt(x1 * x1 + y1 * y1);
+    if (!(nrm > 0)) x1 = 1.0, y1 = 0.0, nrm = 1.0;
   }
+  v[0] = x1 / nrm, v[1] = y1 / nrm, v[2] = 0.0;
+  return lam;
+}
+
+/* The same in 3D by power iteration started on the hint, stopped once the direction
+** no longer moves. */
+static double principal_3d(double cov[3][3], const double *hint, double *v) {
+  double lam = 0;
+  int d, e, it;
+  for (d = 0; d < 3; d++) v[d] = hint[d];
   for (it = 0; it < 60; it++) {
-    double w[3] = {0, 0, 0}, nrm = 0;
-    for (d = 0; d < c->dim; d++)
-      for (e = 0; e < c->dim; e++) w[d] += cov[d][e] * v[e];
+    double w[3] = {0, 0, 0}, nrm = 0, moved = 0;
+    for (d = 0; d < 3; d++)
+      for (e = 0; e < 3; e++) w[d] += cov[d][e] * v[e];
     for (d = 0; d < 3; d++) nrm += w[d] * w[d];
     nrm = sqrt(nrm);
     if (!(nrm > 0)) break;
-    for (d = 0; d < 3; d++) v[d] = w[d] / nrm;
+    for (d = 0; d < 3; d++) {
+      double x = w[d] / nrm;
+      moved += fabs(x - v[d]);
+      v[d] = x;
+    }
     lam = nrm;
+    if (moved < 1e-15) break;
   }
-  {
-    double dot = 0;
-    for (d = 0; d < 3; d++) dot += v[d] * hint[d];
-    for (d = 0; d < 3; d++) sd->dir[d] = dot < 0 ? -v[d] : v[d];
-  }
+  return lam;
+}
+
+/* principal direction of the covariance (oriented along the hint) and the variance
+** left across it */
+static void fit_line(const contour *c, const moments *mo, const double *hint, side *sd) {
+  double cov[3][3], v[3], lam, tr = 0, dot = 0;
+  int d, e;
+  for (d = 0; d < 3; d++) sd->centre[d] = mo->s[d] / mo->n;
+  for (d = 0; d < 3; d++)
+    for (e = 0; e < 3; e++) cov[d][e] = mo->ss[d][e] / mo->n - sd->centre[d] * sd->centre[e];
+  for (d = 0; d < c->dim; d++) tr += cov[d][d];
+  if (c->dim == 2) lam = principal_2d(cov[0][0], cov[0][1], cov[1][1], hint, v);
+  else lam = principal_3d(cov, hint, v);
+  for (d = 0; d < 3; d++) dot += v[d] * hint[d];
+  for (d = 0; d < 3; d++) sd->dir[d] = dot < 0 ? -v[d] : v[d];
   sd->rms = sqrt(fmax(tr - lam, 0.0));
   for (d = 0; d < 3; d++) sd->centre[d] += c->origin[d];
 }

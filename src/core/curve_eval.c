@@ -163,9 +163,9 @@ BSFIT_INLINE void cubic_basis(const cubic_span *cs, const double *U, double u, d
 
 /* The span's polynomial in the local variable t = (u - U[s]) / (U[s+1] - U[s]) in [0, 1]:
 ** coefficients C^(j)(U[s]) h^j / j!, j = 0..3, from the exact derivatives. */
-static void cubic_poly(const bsfit_curve *c, size_t s, size_t d, double *coef) {
+void bsfit__cubic_span_poly(const bsfit_curve *c, size_t s, double *coef) {
   double h = c->knots[s + 1] - c->knots[s], f = 1.0;
-  size_t j, q;
+  size_t j, q, d = (size_t)c->dim;
   bsfit__curve_derivs_span(c, s, c->knots[s], 3, coef);
   for (j = 1; j <= 3; j++) {
     f *= h / (double)j;
@@ -201,7 +201,7 @@ BSFIT_INLINE bsfit_err eval_cubic(const bsfit_curve *c, const double *u, size_t 
       poly = i + 1 < m && u[i + 1] >= U[s] && u[i + 1] < U[s + 1];
       cubic_prepare(&cs, U, s);
       if (poly) {
-        cubic_poly(c, s, d, coef);
+        bsfit__cubic_span_poly(c, s, coef);
         u0 = U[s];
         hinv = cs.r[0];
       }

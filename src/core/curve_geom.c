@@ -107,12 +107,70 @@ bsfit_err bsfit_curve_length(const bsfit_curve *c, double a, double b, double *l
 ** ===================================================================== */
 
 /* Where a parameter may go: [lo, hi], clamped for open curves; periodic curves are
-** evaluated at any u (wrapped) and only the final answer is wrapped. */
+** evaluated at any u (wrapped) and only the final answer is wrapped. A polynomial cubic
+** projected at many points is first converted to one polynomial per span (`poly`), so
+** an evaluation is a cached span lookup and three Horner sums, not three basis
+** recursions and a binary search. */
 typedef struct foot_ctx {
   const bsfit_curve *c;
   const double *P;
   double lo, hi;
+  const double *poly; /* per span s >= p: 4 dim coefficients (bsfit__cubic_span_poly) */
+  size_t s;           /* the last span used */
+  double a, b;        /* the domain */
 } foot_ctx;
+
+static void foot_init(foot_ctx *F, const bsfit_curve *c, const double *poly) {
+  F->c = c;
+  F->P = NULL;
+  F->poly = poly;
+  F->s = (size_t)c->degree;
+  bsfit_curve_domain(c, &F->a, &F->b);
+}
+
+static int poly_form(const bsfit_curve *c) {
+  return c->degree == 3 && c->weights == NULL && !c->bezier;
+}
+
+/* The span polynomials of a polynomial cubic (NULL when c is not one, or out of memory:
+** the basis path then serves). Free with poly_free. */
+static double *poly_new(const bsfit_curve *c, size_t *bytes) {
+  size_t s, d = (size_t)c->dim;
+  double *poly;
+  *bytes = 0;
+  if (!poly_form(c)) return NULL;
+  *bytes = c->n * 4 * d * sizeof(double);
+  poly = bsfit__alloc(NULL, *bytes);
+  if (poly == NULL) return NULL;
+  for (s = 3; s < c->n; s++)
+    if (c->knots[s + 1] > c->knots[s]) bsfit__cubic_span_poly(c, s, poly + s * 4 * d);
+  return poly;
+}
+
+static void poly_free(double *poly, size_t bytes) {
+  if (poly) bsfit__free(NULL, poly, bytes);
+}
+
+/* C, C', C'' at u in span s from the span's polynomial (d: the dimension). */
+#if defined(__GNUC__)
+__attribute__((always_inline))
+#endif
+static inline void poly_derivs_d(const foot_ctx *F, size_t s, double u, double *D, const size_t d) {
+  const double *U = F->c->knots, *cf = F->poly + s * 4 * d;
+  double hinv = 1.0 / (U[s + 1] - U[s]), t = (u - U[s]) * hinv;
+  size_t q;
+  for (q = 0; q < d; q++) {
+    double c0 = cf[q], c1 = cf[d + q], c2 = cf[2 * d + q], c3 = cf[3 * d + q];
+    D[q] = ((c3 * t + c2) * t + c1) * t + c0;
+    D[d + q] = ((3.0 * c3 * t + 2.0 * c2) * t + c1) * hinv;
+    D[2 * d + q] = (6.0 * c3 * t + 2.0 * c2) * hinv * hinv;
+  }
+}
+
+static void poly_derivs(const foot_ctx *F, size_t s, double u, double *D) {
+  if (F->c->dim == 2) poly_derivs_d(F, s, u, D, 2); /* sections: unrolled */
+  else poly_derivs_d(F, s, u, D, (size_t)F->c->dim);
+}
 
 static double ratio(double a, double b) { return b != 0.0 ? a / b : 0.0; } /* 0/0 = 0 */
 
@@ -152,15 +210,16 @@ static void cubic_derivs_span(const bsfit_curve *c, size_t s, double u, double *
 }
 
 /* C, C', C'' at u (D: 3*dim) and |C(u) - P|^2. */
-static double foot_eval(const foot_ctx *F, double u, double *D) {
+static double foot_eval(foot_ctx *F, double u, double *D) {
   const bsfit_curve *c = F->c;
-  size_t q, d = (size_t)c->dim, s;
-  double w = bsfit__curve_wrap(c, u), d2 = 0.0;
-  s = bsfit_knots_find_span(c->knots, c->n, c->degree, w);
-  if (c->degree == 3 && c->weights == NULL && !c->bezier)
-    cubic_derivs_span(c, s, w, D);
-  else
-    bsfit__curve_derivs_span(c, s, w, 2, D);
+  const double *U = c->knots;
+  size_t q, d = (size_t)c->dim, s = F->s;
+  double w = (u >= F->a && u < F->b) ? u : bsfit__curve_wrap(c, u), d2 = 0.0;
+  if (!(w >= U[s] && w < U[s + 1])) s = bsfit_knots_find_span(U, c->n, c->degree, w);
+  F->s = s;
+  if (F->poly) poly_derivs(F, s, w, D);
+  else if (poly_form(c)) cubic_derivs_span(c, s, w, D);
+  else bsfit__curve_derivs_span(c, s, w, 2, D);
   for (q = 0; q < d; q++) d2 += (D[q] - F->P[q]) * (D[q] - F->P[q]);
   return d2;
 }
@@ -178,7 +237,7 @@ static double slope(const foot_ctx *F, const double *D) {
 /* Newton on g(u) = C'.(C-P), g' = C''.(C-P) + |C'|^2, inside [lo, hi]; a step that
 ** would increase the distance is halved until it does not, so the result is never
 ** worse than the start. Returns the parameter, *d2 its squared distance. */
-static double foot_newton(const foot_ctx *F, double u, int iters, double *d2) {
+static double foot_newton(foot_ctx *F, double u, int iters, double *d2) {
   double D[3 * 4], cur = foot_eval(F, u, D), scale = F->hi - F->lo;
   size_t q, d = (size_t)F->c->dim;
   int it, k;
@@ -224,7 +283,7 @@ bsfit_err bsfit_curve_closest(const bsfit_curve *c, const double *P, double *u, 
     return bsfit__fail(st, BSFIT_ENONFINITE, "point P is not finite");
   bsfit_curve_domain(c, &a, &b);
   p = (size_t)c->degree;
-  F.c = c;
+  foot_init(&F, c, NULL); /* one point: converting every span would not pay */
   F.P = P;
   F.lo = a;
   F.hi = b;
@@ -256,8 +315,8 @@ bsfit_err bsfit_curve_closest(const bsfit_curve *c, const double *P, double *u, 
 bsfit_err bsfit_curve_closest_many(const bsfit_curve *c, const double *pts, size_t m, double *u,
                                    double *dist, bsfit_status *st) {
   foot_ctx F;
-  double a, b, D[3 * 4], *smp, *par, *step;
-  size_t s, i, k, K = 0, p, d, q, bytes;
+  double a, b, D[3 * 4], *smp, *par, *step, *poly;
+  size_t s, i, k, K = 0, p, d, q, bytes, pbytes;
   bsfit_err e = bsfit_curve_validate(c, st);
   if (e != BSFIT_OK) return e;
   if (m > 0 && (pts == NULL || u == NULL)) return bsfit__fail(st, BSFIT_EINVAL, "no points or no output");
@@ -273,7 +332,8 @@ bsfit_err bsfit_curve_closest_many(const bsfit_curve *c, const double *pts, size
   if (smp == NULL) return bsfit__fail(st, BSFIT_ENOMEM, "out of memory for %zu samples", K);
   par = smp + K * d;
   step = par + K;
-  F.c = c;
+  poly = poly_new(c, &pbytes);
+  foot_init(&F, c, poly);
   F.P = pts; /* unused by the sampling below */
   for (s = p, k = 0; s < c->n; s++) {
     double h = (c->knots[s + 1] - c->knots[s]) / CLOSEST_SAMPLES;
@@ -302,6 +362,7 @@ bsfit_err bsfit_curve_closest_many(const bsfit_curve *c, const double *pts, size
     u[i] = bsfit__curve_wrap(c, foot_newton(&F, par[kb], NEWTON_MAX_ITERS, &d2));
     if (dist) dist[i] = sqrt(d2);
   }
+  poly_free(poly, pbytes);
   bsfit__free(NULL, smp, bytes);
   return bsfit__ok(st);
 }
@@ -309,19 +370,21 @@ bsfit_err bsfit_curve_closest_many(const bsfit_curve *c, const double *pts, size
 bsfit_err bsfit_curve_project_many(const bsfit_curve *c, const double *pts, size_t m, double *u,
                                    double *dist, int iters, bsfit_status *st) {
   foot_ctx F;
-  double a, b, d2;
-  size_t i, d;
+  double a, b, d2, *poly;
+  size_t i, d, pbytes = 0;
   bsfit_err e = bsfit__curve_check(c, st);
   if (e != BSFIT_OK) return e;
   if (m > 0 && (pts == NULL || u == NULL))
     return bsfit__fail(st, BSFIT_EINVAL, "no points or no parameters");
   if (iters < 0) return bsfit__fail(st, BSFIT_EINVAL, "iterations = %d is negative", iters);
   d = (size_t)c->dim;
-  bsfit_curve_domain(c, &a, &b);
-  F.c = c;
-  for (i = 0; i < m; i++) {
+  for (i = 0; i < m; i++) /* all checked before any is moved */
     if (!bsfit__all_finite(pts + i * d, d) || !isfinite(u[i]))
       return bsfit__fail(st, BSFIT_ENONFINITE, "point %zu or its parameter is not finite", i);
+  bsfit_curve_domain(c, &a, &b);
+  poly = m > 8 ? poly_new(c, &pbytes) : NULL; /* few points: not worth converting */
+  foot_init(&F, c, poly);
+  for (i = 0; i < m; i++) {
     F.P = pts + i * d;
     /* open: the domain; periodic: one period either side (wrapped at the end) */
     F.lo = c->periodic ? u[i] - (b - a) : a;
@@ -329,6 +392,7 @@ bsfit_err bsfit_curve_project_many(const bsfit_curve *c, const double *pts, size
     u[i] = bsfit__curve_wrap(c, foot_newton(&F, clampd(u[i], F.lo, F.hi), iters, &d2));
     if (dist) dist[i] = sqrt(d2);
   }
+  poly_free(poly, pbytes);
   return bsfit__ok(st);
 }
 

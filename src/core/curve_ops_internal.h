@@ -48,6 +48,11 @@ bsfit_err bsfit__hc_to_periodic(const bsfit__hcurve *h, int dim, const double *t
 ** a valid curve (u already wrapped), no checks. out: (k+1)*dim doubles. */
 void bsfit__curve_derivs_span(const bsfit_curve *c, size_t s, double u, int k, double *out);
 
+/* curve_eval.c: span s of a polynomial cubic (no weights, not Bezier, U[s] < U[s+1]) as a
+** polynomial in t = (u - U[s]) / (U[s+1] - U[s]): coef[j*dim + q], j = 0..3, the
+** coefficients of t^j (from the exact derivatives at U[s]). */
+void bsfit__cubic_span_poly(const bsfit_curve *c, size_t s, double *coef);
+
 /* Cheap O(1) checks of a curve handed to an operation: not NULL, arrays present,
 ** degree and dimension in range. The full O(n) check is bsfit_curve_validate. */
 bsfit_err bsfit__curve_check(const bsfit_curve *c, bsfit_status *st);

@@ -4,7 +4,10 @@
 ** banded LU, column-major, through the *_work entry points so that no call allocates.
 ** LAPACK's `info` is turned into a bsfit_err in one function, bsfit__lapack_status.
 */
+#define _GNU_SOURCE /* RTLD_DEFAULT */
 #include "fit_internal.h"
+
+#include <dlfcn.h>
 
 #include <limits.h>
 #include <math.h>
@@ -148,4 +151,17 @@ bsfit_err bsfit__gb_solve(size_t n, int kl, int ku, double *ab, size_t ldab, int
                                                  (lapack_int)nrhs, ab, (lapack_int)ldab,
                                                  (lapack_int *)ipiv, b, (lapack_int)ldb),
                               "dgbsv", 0, st);
+}
+
+int bsfit_blas_single_thread(void) {
+  /* looked up at run time: the symbol exists only when the BLAS behind LAPACKE is
+  ** OpenBLAS, and a reference BLAS must link and run too */
+  union {
+    void *sym;
+    void (*set)(int);
+  } f;
+  f.sym = dlsym(RTLD_DEFAULT, "openblas_set_num_threads");
+  if (f.sym == NULL) return 0;
+  f.set(1);
+  return 1;
 }

@@ -55,6 +55,7 @@ static double best_rate(const bsfit_curve *c, const double *u, double *out, int 
 }
 
 int main(int argc, char **argv) {
+  (void)bsfit_blas_single_thread(); /* see bsfit_fit.h: idle BLAS workers spin */
   int runs = argc > 1 ? atoi(argv[1]) : 5, dim, rational;
   double *sorted = malloc(NPAR * sizeof(double)), *shuffled = malloc(NPAR * sizeof(double));
   double *out = malloc((size_t)NPAR * 3 * sizeof(double)), sink = 0.0;

@@ -90,6 +90,7 @@ static double time_fit(size_t m, size_t count, int periodic, int reps, const bsf
 }
 
 int main(int argc, char **argv) {
+  (void)bsfit_blas_single_thread(); /* see bsfit_fit.h: idle BLAS workers spin */
   int reps = argc > 1 ? atoi(argv[1]) : 5;
   size_t m;
   double t_open, t_per, t_small;

@@ -21,6 +21,7 @@ static double now(void) {
 }
 
 int main(int argc, char **argv) {
+  (void)bsfit_blas_single_thread(); /* see bsfit_fit.h: idle BLAS workers spin */
   size_t k = argc > 1 ? (size_t)atol(argv[1]) : 1000;
   size_t n = argc > 2 ? (size_t)atol(argv[2]) : 100;
   int rational = argc > 3 ? atoi(argv[3]) : 0;

@@ -580,6 +580,45 @@ static void test_invalid_inputs(void **state) {
 
 /* }==================================================================== */
 
+static void test_project_many_batch_finds_feet(void **state) {
+  /* given random cubic curves (open, periodic) and points put at a known distance along
+  ** the normal of known feet, when all are projected in one call from nearby starts (the
+  ** per-span polynomial path), then the feet and distances are recovered */
+  test_rng r = {31415};
+  int kind;
+  (void)state;
+  for (kind = 0; kind <= 2; kind += 2) { /* clamped, periodic */
+    bsfit_curve c;
+    double Q[40 * 2], u[40], u0[40], dd[40], a, b;
+    size_t i;
+    if (!random_curve(&r, &c, 3, 9, 2, kind, 0)) continue;
+    bsfit_curve_domain(&c, &a, &b);
+    for (i = 0; i < 40; i++) {
+      double D[3 * 2], k[1], sp, nx, ny, delta, x = a + (b - a) * (0.05 + 0.9 * (double)i / 40.0);
+      bsfit_curve_derivs(&c, x, 2, D, NULL);
+      sp = hypot(D[2], D[3]);
+      nx = -D[3] / sp, ny = D[2] / sp;
+      /* stay inside the radius of curvature, so the foot is the nearest point locally */
+      k[0] = fabs(D[2] * D[5] - D[3] * D[4]) / (sp * sp * sp);
+      delta = rng_range(&r, -0.3, 0.3) / (1.0 + k[0]);
+      Q[2 * i] = D[0] + delta * nx;
+      Q[2 * i + 1] = D[1] + delta * ny;
+      u0[i] = x;
+      u[i] = x + rng_range(&r, -0.002, 0.002) * (b - a);
+      dd[i] = fabs(delta);
+    }
+    {
+      double got[40];
+      assert_int_equal(bsfit_curve_project_many(&c, Q, 40, u, got, 30, NULL), BSFIT_OK);
+      for (i = 0; i < 40; i++) {
+        assert_float_equal(u[i], u0[i], 1e-8 * (b - a));
+        assert_float_equal(got[i], dd[i], 1e-11);
+      }
+    }
+    bsfit_curve_free(&c);
+  }
+}
+
 static void test_closest_many_equals_closest(void **state) {
   /* given random curves of every kind and points scattered around them, when the
   ** closest points are found one by one and all at once, then they agree */
@@ -621,6 +660,7 @@ int main(void) {
       cmocka_unit_test(test_periodic_seam_kept_by_operations),
       cmocka_unit_test(test_invalid_inputs),
       cmocka_unit_test(test_closest_many_equals_closest),
+      cmocka_unit_test(test_project_many_batch_finds_feet),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

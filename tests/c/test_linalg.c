@@ -73,6 +73,47 @@ static void test_condition_estimates(void **state) {
   assert_float_equal(bsfit__po_rcond(4, a, 4, 8.0, work, iwork), 0.125, EPS_EXACT);
 }
 
+static void test_condition_estimate_of_a_cubic_band(void **state) {
+  /* given a random SPD matrix of bandwidth 3 (a fit's normal matrix), when its 1-norm
+  ** condition is estimated from the band factor (the unrolled kd = 3 substitutions),
+  ** then it agrees with the same band stored as kd = 4 (the general substitutions) and
+  ** lies within Hager's usual factor of the exact value from a dense inverse */
+  enum { n = 12 };
+  double a[n * n], inv[n * n], ab3[4 * n], ab4[5 * n], work[3 * n], anorm = 0.0, inorm = 0.0;
+  int iwork[n];
+  size_t i, j;
+  test_rng r = {4242};
+  (void)state;
+  memset(a, 0, sizeof a);
+  for (j = 0; j < n; j++)
+    for (i = j; i < n && i <= j + 3; i++) a[i + j * n] = a[j + i * n] = rng_range(&r, -1.0, 1.0);
+  for (j = 0; j < n; j++) a[j + j * n] = 4.0 + rng_range(&r, 0.0, 1.0) * (double)(j % 3);
+  memset(ab4, 0, sizeof ab4);
+  for (j = 0; j < n; j++)
+    for (i = j; i < n && i <= j + 3; i++) ab3[(i - j) + j * 4] = ab4[(i - j) + j * 5] = a[i + j * n];
+  for (j = 0; j < n; j++) { /* |A|_1 and, from a dense inverse, |A^-1|_1 */
+    double cs = 0.0;
+    for (i = 0; i < n; i++) cs += fabs(a[i + j * n]), inv[i + j * n] = i == j ? 1.0 : 0.0;
+    if (cs > anorm) anorm = cs;
+  }
+  assert_int_equal(bsfit__po_factor(n, a, n, NULL), BSFIT_OK);
+  assert_int_equal(bsfit__po_solve(n, a, n, n, inv, n, NULL), BSFIT_OK);
+  for (j = 0; j < n; j++) {
+    double cs = 0.0;
+    for (i = 0; i < n; i++) cs += fabs(inv[i + j * n]);
+    if (cs > inorm) inorm = cs;
+  }
+  assert_int_equal(bsfit__pb_factor(n, 3, ab3, 4, NULL), BSFIT_OK);
+  assert_int_equal(bsfit__pb_factor(n, 4, ab4, 5, NULL), BSFIT_OK);
+  {
+    double rc3 = bsfit__pb_rcond(n, 3, ab3, 4, anorm, work, iwork);
+    double rc4 = bsfit__pb_rcond(n, 4, ab4, 5, anorm, work, iwork), exact = 1.0 / (anorm * inorm);
+    assert_float_equal(rc3, rc4, 1e-12 * rc4);
+    assert_true(rc3 >= exact * (1.0 - 1e-12)); /* the estimate of |A^-1| is a lower bound */
+    assert_true(rc3 <= 3.0 * exact);
+  }
+}
+
 static void test_band_lu_and_dense_cholesky(void **state) {
   /* non-symmetric tridiagonal [3 1; -1 3 1; ...] with kl = ku = 1: ldab = 4 */
   const size_t n = 6;
@@ -103,11 +144,27 @@ static void test_band_lu_and_dense_cholesky(void **state) {
   assert_float_equal(y[1] + 2 * y[2], 3.0, 1e-13);
 }
 
+static void test_blas_single_thread(void **state) {
+  /* asking for one BLAS thread is harmless whatever the BLAS, and solves still work */
+  double ab[100], x[50];
+  size_t i;
+  int r = bsfit_blas_single_thread();
+  (void)state;
+  assert_true(r == 0 || r == 1);
+  tridiag(50, 0.5, ab);
+  for (i = 0; i < 50; i++) x[i] = 1.0;
+  assert_int_equal(bsfit__pb_factor(50, 1, ab, 2, NULL), BSFIT_OK);
+  assert_int_equal(bsfit__pb_solve(50, 1, ab, 2, 1, x, 50, NULL), BSFIT_OK);
+  assert_true(x[0] > 0.0 && x[0] < 1.0);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(test_info_mapping),
     cmocka_unit_test(test_band_cholesky_solves),
     cmocka_unit_test(test_condition_estimates),
+    cmocka_unit_test(test_condition_estimate_of_a_cubic_band),
+    cmocka_unit_test(test_blas_single_thread),
     cmocka_unit_test(test_band_lu_and_dense_cholesky),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
