@@ -209,15 +209,23 @@ static void cubic_derivs_span(const bsfit_curve *c, size_t s, double u, double *
   }
 }
 
-/* C, C', C'' at u (D: 3*dim) and |C(u) - P|^2. */
-static double foot_eval(foot_ctx *F, double u, double *D) {
+#if defined(__GNUC__)
+#  define GEOM_INLINE static inline __attribute__((always_inline))
+#else
+#  define GEOM_INLINE static inline
+#endif
+
+/* C, C', C'' at u (D: 3*dim) and |C(u) - P|^2. `poly2`: the curve is 2D and F->poly is
+** set, a constant in the instances below, so the hot case compiles to straight code. */
+GEOM_INLINE double foot_eval(foot_ctx *F, double u, double *D, const int poly2) {
   const bsfit_curve *c = F->c;
   const double *U = c->knots;
-  size_t q, d = (size_t)c->dim, s = F->s;
+  size_t q, d = poly2 ? 2 : (size_t)c->dim, s = F->s;
   double w = (u >= F->a && u < F->b) ? u : bsfit__curve_wrap(c, u), d2 = 0.0;
   if (!(w >= U[s] && w < U[s + 1])) s = bsfit_knots_find_span(U, c->n, c->degree, w);
   F->s = s;
-  if (F->poly) poly_derivs(F, s, w, D);
+  if (poly2) poly_derivs_d(F, s, w, D, 2);
+  else if (F->poly) poly_derivs(F, s, w, D);
   else if (poly_form(c)) cubic_derivs_span(c, s, w, D);
   else bsfit__curve_derivs_span(c, s, w, 2, D);
   for (q = 0; q < d; q++) d2 += (D[q] - F->P[q]) * (D[q] - F->P[q]);
@@ -227,8 +235,8 @@ static double foot_eval(foot_ctx *F, double u, double *D) {
 static double clampd(double u, double lo, double hi) { return u < lo ? lo : (u > hi ? hi : u); }
 
 /* g(u) = C'.(C - P) from D = (C, C', C'') */
-static double slope(const foot_ctx *F, const double *D) {
-  size_t q, d = (size_t)F->c->dim;
+GEOM_INLINE double slope(const foot_ctx *F, const double *D, const int poly2) {
+  size_t q, d = poly2 ? 2 : (size_t)F->c->dim;
   double g = 0.0;
   for (q = 0; q < d; q++) g += D[d + q] * (D[q] - F->P[q]);
   return g;
@@ -237,9 +245,9 @@ static double slope(const foot_ctx *F, const double *D) {
 /* Newton on g(u) = C'.(C-P), g' = C''.(C-P) + |C'|^2, inside [lo, hi]; a step that
 ** would increase the distance is halved until it does not, so the result is never
 ** worse than the start. Returns the parameter, *d2 its squared distance. */
-static double foot_newton(foot_ctx *F, double u, int iters, double *d2) {
-  double D[3 * 4], cur = foot_eval(F, u, D), scale = F->hi - F->lo;
-  size_t q, d = (size_t)F->c->dim;
+GEOM_INLINE double newton_body(foot_ctx *F, double u, int iters, double *d2, const int poly2) {
+  double D[3 * 4], cur = foot_eval(F, u, D, poly2), scale = F->hi - F->lo;
+  size_t q, d = poly2 ? 2 : (size_t)F->c->dim;
   int it, k;
   for (it = 0; it < iters; it++) {
     double g = 0.0, gp = 0.0, step, un = u, dn = cur, Dn[3 * 4];
@@ -251,15 +259,19 @@ static double foot_newton(foot_ctx *F, double u, int iters, double *d2) {
     if (g == 0.0) break;
     /* where g' <= 0 Newton points the wrong way: walk downhill instead */
     step = gp > 0.0 ? -g / gp : (g > 0.0 ? -0.05 : 0.05) * scale;
+    /* converged: Newton's error is about its step, so the foot is this close to u and the
+    ** distance exact to the square of it; evaluating the step would not change them */
+    if (gp > 0.0 && fabs(step) <= 1e-13 * (fabs(u) + scale)) break;
     for (k = 0; k <= HALVINGS; k++, step *= 0.5) {
       un = clampd(u + step, F->lo, F->hi);
-      dn = foot_eval(F, un, Dn);
+      dn = foot_eval(F, un, Dn, poly2);
       /* near the foot the distance changes below its rounding: there a step that
       ** shrinks |g| is taken as long as the distance stays level */
-      if (dn <= cur || (dn <= cur * (1.0 + 1e-12) && fabs(slope(F, Dn)) < 0.5 * fabs(g))) break;
+      if (dn <= cur || (dn <= cur * (1.0 + 1e-12) && fabs(slope(F, Dn, poly2)) < 0.5 * fabs(g)))
+        break;
     }
     if (k > HALVINGS || un == u) break;
-    memcpy(D, Dn, sizeof D);
+    memcpy(D, Dn, 3 * d * sizeof(double));
     cur = dn;
     if (fabs(un - u) <= 1e-15 * (fabs(u) + scale)) {
       u = un;
@@ -270,6 +282,15 @@ static double foot_newton(foot_ctx *F, double u, int iters, double *d2) {
   *d2 = cur;
   return u;
 }
+
+static double foot_newton(foot_ctx *F, double u, int iters, double *d2) {
+  if (F->poly && F->c->dim == 2) return newton_body(F, u, iters, d2, 1);
+  return newton_body(F, u, iters, d2, 0);
+}
+
+/* the samples of the closest-point searches: C(u) and its derivatives into D (3*dim
+** doubles); returns |C(u) - F->P|^2 */
+static double sample_at(foot_ctx *F, double u, double *D) { return foot_eval(F, u, D, 0); }
 
 bsfit_err bsfit_curve_closest(const bsfit_curve *c, const double *P, double *u, double *dist,
                               bsfit_status *st) {
@@ -291,7 +312,7 @@ bsfit_err bsfit_curve_closest(const bsfit_curve *c, const double *P, double *u, 
   for (s = p; s < c->n; s++) {
     double h = (c->knots[s + 1] - c->knots[s]) / CLOSEST_SAMPLES;
     for (i = 0; h > 0 && i <= CLOSEST_SAMPLES; i++) {
-      double v = c->knots[s] + h * (double)i, dv = foot_eval(&F, v, D);
+      double v = c->knots[s] + h * (double)i, dv = sample_at(&F, v, D);
       if (dv < best) {
         best = dv;
         ubest = v;
@@ -340,7 +361,7 @@ bsfit_err bsfit_curve_closest_many(const bsfit_curve *c, const double *pts, size
     for (i = 0; h > 0 && i <= CLOSEST_SAMPLES; i++, k++) {
       par[k] = c->knots[s] + h * (double)i;
       step[k] = h;
-      (void)foot_eval(&F, par[k], D);
+      (void)sample_at(&F, par[k], D);
       memcpy(smp + k * d, D, d * sizeof(double));
     }
   }

@@ -132,6 +132,29 @@ static int vector_sum(lua_State *L) {
   return 1;
 }
 
+/* v:rms([w [, clip]]): sqrt(sum w_i min(|v_i|, clip)^2 / sum w_i), w a Vector of the
+** same length (nil: all 1), clip > 0 (nil: none). Winsorised, it is the search statistic
+** of the auto strategy; 0 for an empty vector. */
+static int vector_rms(lua_State *L) {
+  bsfit_vector_ud *v = checkvector(L, 1), *w = NULL;
+  double clip = luaL_optnumber(L, 3, HUGE_VAL), s = 0.0, sw = 0.0;
+  size_t i;
+  if (!lua_isnoneornil(L, 2)) {
+    w = checkvector(L, 2);
+    if (w->n != v->n)
+      return luaL_argerror(L, 2, lua_pushfstring(L, "%d weights for %d values", (int)w->n, (int)v->n));
+  }
+  luaL_argcheck(L, clip > 0.0, 3, "clip must be positive");
+  for (i = 0; i < v->n; i++) {
+    double a = fabs(v->x[i]), wi = w ? w->x[i] : 1.0;
+    if (a > clip) a = clip;
+    s += wi * a * a;
+    sw += wi;
+  }
+  lua_pushnumber(L, sw > 0.0 ? sqrt(s / sw) : 0.0);
+  return 1;
+}
+
 /* extreme value and its 1-based index (nil for an empty vector); sign = +1 max, -1 min */
 static int extreme(lua_State *L, double sign) {
   bsfit_vector_ud *v = checkvector(L, 1);
@@ -176,7 +199,7 @@ static int vector_tostring(lua_State *L) {
 
 static const luaL_Reg vector_meth[] = {
   {"get", vector_get}, {"set", vector_set}, {"totable", vector_totable},
-  {"bytes", vector_bytes}, {"sum", vector_sum}, {"max", vector_max},
+  {"bytes", vector_bytes}, {"sum", vector_sum}, {"rms", vector_rms}, {"max", vector_max},
   {"min", vector_min}, {"copy", vector_copy}, {NULL, NULL}};
 
 static const luaL_Reg vector_metameth[] = {

@@ -34,6 +34,18 @@ T.test("sum, max, min with their 1-based index", function()
   T.eq(u:sum(), n * (n + 1) / 2)
 end)
 
+T.test("rms: plain, weighted, winsorised; bad arguments", function()
+  local v = bs.vector.new{3, -4}
+  T.near(v:rms(), math.sqrt(12.5), 1e-15) -- (9 + 16) / 2
+  T.near(v:rms(bs.vector.new{1, 0}), 3, 1e-15, "zero weight drops a value")
+  T.near(v:rms(bs.vector.new{1, 3}), math.sqrt((9 + 48) / 4), 1e-15)
+  T.near(v:rms(nil, 2), 2, 1e-15, "both clipped at 2")
+  T.eq(bs.vector.new(0):rms(), 0)
+  T.raises("bad argument #1 to 'rms' (2 weights for 3 values)", function() bs.vector.new{1, 2, 3}:rms(v) end)
+  T.raises("bad argument #2 to 'rms' (clip must be positive)", function() v:rms(nil, 0) end)
+  T.raises({ match = "bad argument #1 to 'rms' %(bsfit.Vector expected" }, function() v:rms({1, 2}) end)
+end)
+
 T.test("bytes/frombytes and copy", function()
   local v = bs.vector.new{1, 2, 3}
   T.eq(v:bytes(), string.pack("=ddd", 1, 2, 3))

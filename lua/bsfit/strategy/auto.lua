@@ -78,19 +78,12 @@ local function fit_once(ctx, P, K, u, w)
   return common.ok("fit", F:fit(P, u, w))
 end
 
--- Weighted RMS and maximum of the distances d (Vector) with weights w (Vector).
+-- Weighted RMS and maximum of the distances d (Vector) with weights w (Vector). With
+-- `huber` (robust setting) a far point counts as if at distance huber, so the search is
+-- not driven by outliers that the reweighting will discount.
 local function stats(d, w, huber)
-  local dt, wt = d:totable(), w:totable()
-  local s, sw, max, imax = 0, 0, -1, 1
-  for i = 1, #dt do
-    -- with `huber` (robust setting) a far point counts as if at distance huber, so
-    -- the search is not driven by outliers that the reweighting will discount
-    local di = (huber and dt[i] > huber) and huber or dt[i]
-    s = s + wt[i] * di * di
-    sw = sw + wt[i]
-    if dt[i] > max then max, imax = dt[i], i end
-  end
-  return math.sqrt(s / sw), max, imax
+  local max, imax = d:max()
+  return d:rms(w, huber or nil), max or 0, imax or 1
 end
 
 -- Large sections are read through a subsample of at most SUBSAMPLE points for the
@@ -124,21 +117,33 @@ local NEWTON = 4 -- Newton steps per foot point: the start is always close
 local function fit_corrected(ctx, P, n, rounds, measure_sub)
   local K, N = knots_for(ctx, n)
   local u, w = ctx.params, ctx.weights
+  local sub = measure_sub and ctx.sub
+  if sub then
+    sub.u = sub.u or every(u, sub.stride)
+    sub.w = sub.w or every(w, sub.stride)
+  end
+  -- a search fit of a large section: the subsample alone, while it has points to spare
+  -- in every span (the count is read off statistics of 5000 points either way)
+  if sub and rounds == 0 and N * 4 <= #sub.P then
+    local ok, C = pcall(fit_once, ctx, sub.P, K, sub.u, sub.w)
+    if ok then
+      local _, ds = C:project(sub.P, sub.u, NEWTON)
+      return C, u, ds, N, sub.w, #sub.P
+    end
+  end
   local C = fit_once(ctx, P, K, u, w)
   local d
   for _ = 1, rounds do
     u = C:project(P, u, NEWTON)
     C = fit_once(ctx, P, K, u, w)
   end
-  if measure_sub then
-    local sub = ctx.sub
-    if u ~= ctx.params or not sub.u then sub.u = every(u, sub.stride) end
-    sub.w = sub.w or every(w, sub.stride)
-    local _, ds = C:project(sub.P, sub.u, NEWTON)
-    return C, u, ds, N, sub.w
+  if sub then
+    local su = u == ctx.params and sub.u or every(u, sub.stride)
+    local _, ds = C:project(sub.P, su, NEWTON)
+    return C, u, ds, N, sub.w, #P
   end
   u, d = C:project(P, u, NEWTON)
-  return C, u, d, N, w
+  return C, u, d, N, w, #P
 end
 
 -- }======================================================================
@@ -231,7 +236,7 @@ function steps.count(P, ctx)
   local floor = 1e-7 * size_of(P) -- clean data: no need to go below a relative 1e-7
   local tries, best, chosen, stalls = {}, nil, nil, 0
   while true do
-    local C, u, d, N, wm = fit_corrected(ctx, P, n, ctx.sub and 0 or 1, ctx.sub ~= nil)
+    local C, u, d, N, wm, mfit = fit_corrected(ctx, P, n, ctx.sub and 0 or 1, ctx.sub ~= nil)
     local rms, max = stats(d, wm, ctx.settings.robust and ctx.settings.huber * math.max(sigma, 1e-12))
     local fit = { curve = C, params = u, distances = d, count = N, rms = rms, max = max }
     tries[#tries + 1] = { count = N, rms = rms, max = max }
@@ -242,7 +247,7 @@ function steps.count(P, ctx)
       if max <= tol then chosen = fit; break end
     elseif chosen then
       if rms < 0.7 * chosen.rms and rms > floor then chosen = fit else break end
-    elseif rms <= 1.05 * math.max(sigma * math.sqrt(math.max(0.25, 1 - N / m)), floor) then
+    elseif rms <= 1.05 * math.max(sigma * math.sqrt(math.max(0.25, 1 - N / mfit)), floor) then
       chosen = fit
     end
     if n >= nmax or (not chosen and stalls >= 2) then break end
@@ -287,13 +292,8 @@ function steps.measure(P, ctx)
   if ctx.distances_of ~= ctx.curve or d == nil then
     d = select(2, ctx.curve:project(P, ctx.params_final or ctx.params, NEWTON))
   end
-  local dt = d:totable()
-  local sum, max, imax = 0, -1, 1
-  for i = 1, #dt do
-    sum = sum + dt[i] * dt[i]
-    if dt[i] > max then max, imax = dt[i], i end
-  end
-  return { residuals = dt, rms = math.sqrt(sum / #dt), max = max, max_index = imax }
+  local max, imax = d:max()
+  return { residuals = d:totable(), rms = d:rms(), max = max or 0, max_index = imax or 1 }
 end
 
 -- }======================================================================
