@@ -314,7 +314,7 @@ static bsfit_err open_solve(bsfit_fitter *f, const double *pts, size_t m, int di
     e = bsfit__pb_factor(nf, kd, ab, ldab, st);
     if (e == BSFIT_OK) e = bsfit__pb_solve(nf, kd, ab, ldab, (size_t)dim, f->rhs + fx.lo, n, st);
     if (e != BSFIT_OK) return empty_span_error(f, e, st, NULL, NULL);
-    if (rcond) *rcond = bsfit__pb_rcond(nf, kd, ab, ldab, anorm, f->work, f->iwork);
+    if (rcond) *rcond = bsfit__pb_rcond_tn(nf, kd, ab, ldab, anorm, f->work);
   }
   for (i = fx.lo; i < fx.hi; i++)
     for (c = 0; c < (size_t)dim; c++) ctrl[i * (size_t)dim + c] = f->rhs[c * n + i];

@@ -28,6 +28,13 @@ bsfit_err bsfit__pb_solve(size_t n, int kd, const double *ab, size_t ldab, size_
 ** 0 on failure. */
 double bsfit__pb_rcond(size_t n, int kd, const double *ab, size_t ldab, double anorm,
                        double *work, int *iwork);
+/* The same for a totally nonnegative band (work: 2n doubles), exact in one solve. An open
+** fit's normal matrix A = sum_k w_k N(u_k) N(u_k)^T is one: the sum does not depend on the
+** order of the points, B-spline collocation matrices at sorted parameters are totally
+** nonnegative (de Boor), and so are products of such matrices (Cauchy-Binet) and their
+** principal submatrices (fixed ends eliminated). Periodic normal matrices are not. */
+double bsfit__pb_rcond_tn(size_t n, int kd, const double *ab, size_t ldab, double anorm,
+                          double *work);
 /* Dense symmetric positive definite, lower, column-major. */
 bsfit_err bsfit__po_factor(size_t n, double *a, size_t lda, bsfit_status *st);
 bsfit_err bsfit__po_solve(size_t n, const double *a, size_t lda, size_t nrhs, double *b,

@@ -213,6 +213,99 @@ static void test_matches_dense_normal_equations(void **state) {
   }
 }
 
+/* The exact reciprocal 1-norm condition number of rows/columns lo..hi-1 of the dense
+** normal matrix N^T W N, through a dense inverse (dense_solve on the identity). */
+static double exact_rcond(const double *U, int p, size_t n, const double *u, const double *w,
+                          size_t m, size_t lo, size_t hi) {
+  size_t nf = hi - lo, i, j, k;
+  double *A = calloc(nf * nf, sizeof(double)), *I = calloc(nf * nf, sizeof(double));
+  double Nl[BSFIT_MAX_DEGREE + 1], an = 0.0, in = 0.0;
+  assert_non_null(A);
+  assert_non_null(I);
+  for (k = 0; k < m; k++) {
+    size_t s = bsfit_knots_find_span(U, n, p, u[k]);
+    bsfit_basis_funs(s, u[k], p, U, Nl);
+    for (i = 0; i <= (size_t)p; i++)
+      for (j = 0; j <= (size_t)p; j++) {
+        size_t a = s - (size_t)p + i, b = s - (size_t)p + j;
+        if (a >= lo && a < hi && b >= lo && b < hi) A[(a - lo) * nf + (b - lo)] += w[k] * Nl[i] * Nl[j];
+      }
+  }
+  for (j = 0; j < nf; j++) {
+    double cs = 0.0;
+    for (i = 0; i < nf; i++) cs += fabs(A[i * nf + j]);
+    if (cs > an) an = cs;
+    I[j * nf + j] = 1.0;
+  }
+  dense_solve(A, I, nf, nf);
+  for (j = 0; j < nf; j++) {
+    double cs = 0.0;
+    for (i = 0; i < nf; i++) cs += fabs(I[i * nf + j]);
+    if (cs > in) in = cs;
+  }
+  free(A);
+  free(I);
+  return 1.0 / (an * in);
+}
+
+static void test_rcond_is_exact(void **state) {
+  /* given weighted data, degrees 1..5, sorted or shuffled parameters, free or fixed ends,
+  ** when fitted, then the reported rcond is the exact 1-norm reciprocal condition number of
+  ** the normal matrix of the free unknowns (the matrix is totally nonnegative, so one solve
+  ** gives |A^-1|_1 exactly; see linalg.c) */
+  test_rng r = {1357};
+  size_t m = 120, n = 14, k;
+  double pts[120 * 2], u[120], w[120];
+  int p, shuffled, fixed;
+  (void)state;
+  noisy_curve(&r, m, pts, u, w);
+  for (p = 1; p <= 5; p++)
+    for (shuffled = 0; shuffled <= 1; shuffled++)
+      for (fixed = 0; fixed <= 1; fixed++) {
+        bsfit_fit_opts o;
+        bsfit_fitter *f;
+        bsfit_curve out;
+        bsfit_fit_report rep;
+        double spts[120 * 2], su[120], sw[120], want;
+        const double *U;
+        if (shuffled) { /* the same points in another order: the same normal matrix */
+          for (k = 0; k < m; k++) {
+            size_t j = (k * 37) % m; /* 37 is prime to 120: a permutation */
+            spts[2 * k] = pts[2 * j], spts[2 * k + 1] = pts[2 * j + 1];
+            su[k] = u[j], sw[k] = w[j];
+          }
+        } else {
+          memcpy(spts, pts, sizeof pts), memcpy(su, u, sizeof u), memcpy(sw, w, sizeof w);
+        }
+        bsfit_fit_opts_init(&o);
+        o.degree = p;
+        o.count = n;
+        o.fix_ends = fixed;
+        bsfit_curve_init(&out);
+        assert_int_equal(bsfit_fitter_new(&f, &o, NULL, NULL), BSFIT_OK);
+        if (shuffled) { /* knots from the sorted parameters, fixed for the shuffled fit */
+          bsfit_fitter *g;
+          size_t nk;
+          bsfit_curve tmp;
+          bsfit_curve_init(&tmp);
+          assert_int_equal(bsfit_fitter_new(&g, &o, NULL, NULL), BSFIT_OK);
+          assert_int_equal(bsfit_fitter_fit(g, pts, m, 2, u, w, &tmp, NULL, NULL, NULL), BSFIT_OK);
+          o.knots = bsfit_fitter_knots(g, &nk);
+          o.nknots = nk;
+          o.fix_ends = 0; /* fixed ends take the first and last point: not permutable */
+          assert_int_equal(bsfit_fitter_configure(f, &o, NULL), BSFIT_OK);
+          bsfit_fitter_free(g);
+          bsfit_curve_free(&tmp);
+        }
+        assert_int_equal(bsfit_fitter_fit(f, spts, m, 2, su, sw, &out, &rep, NULL, NULL), BSFIT_OK);
+        U = out.knots;
+        want = exact_rcond(U, p, n, su, sw, m, o.fix_ends ? 1 : 0, o.fix_ends ? n - 1 : n);
+        assert_float_equal(rep.rcond, want, 1e-9 * want);
+        bsfit_fitter_free(f);
+        bsfit_curve_free(&out);
+      }
+}
+
 static void test_weight_pulls_curve(void **state) {
   test_rng r = {99};
   size_t m = 60, k, idx[] = {7, 30, 52}, t;
@@ -644,6 +737,7 @@ int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(test_reproduces_spline_same_space),
     cmocka_unit_test(test_matches_dense_normal_equations),
+    cmocka_unit_test(test_rcond_is_exact),
     cmocka_unit_test(test_weight_pulls_curve),
     cmocka_unit_test(test_fixed_ends_and_tangents),
     cmocka_unit_test(test_constraints_keep_exact_spline),
