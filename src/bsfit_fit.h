@@ -171,14 +171,14 @@ typedef struct bsfit_fit_report {
                                 in one extra banded solve: A is totally nonnegative (a sum of
                                 w_k N(u_k) N(u_k)^T, B-spline collocation is), so A^-1 has the
                                 checkerboard sign pattern and |A^-1|_1 = |A^-1 s|_inf with
-                                s = (1, -1, 1, ...). Periodic fits (not totally nonnegative):
-                                |A^-1|_1 replaced by max(|A11^-1|_1, |S^-1|_1), A11 the banded
-                                leading block and S the p x p Schur complement of the block
-                                elimination, each estimated by Hager-Higham (LAPACK dlacn2,
-                                as in dpbcon) / dpocon: both are principal parts of A^-1 in
-                                the 2-norm sense, so this is an upper bound of the true value
-                                within the estimators' usual factor. 1 for a fit with no free
-                                unknowns. */
+                                s = (1, -1, 1, ...). Periodic fits (A is not totally
+                                nonnegative): |A^-1|_1 replaced by max(|A11^-1|_1, |S^-1|_1),
+                                A11 the banded leading block (totally nonnegative: exact, as
+                                above) and S the p x p Schur complement of the block
+                                elimination (LAPACK dpocon's estimate): both are principal
+                                parts of A^-1 in the 2-norm sense, so this is an upper bound
+                                of the true value within the estimator's usual factor. 1 for
+                                a fit with no free unknowns. */
   size_t n_empty_spans;    /**< spans of positive length holding no parameter */
   size_t first_empty_span; /**< knot-vector index of the first one (valid when n_empty_spans) */
   size_t m;                /**< number of points fitted */

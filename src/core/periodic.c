@@ -111,7 +111,11 @@ bsfit_err bsfit__periodic_solve(bsfit_fitter *f, int dim, double *ctrl, double *
     for (j = 0; j < p; j++) ctrl[(n1 + j) * d + k] = t[k * p + j];
   }
   if (rcond) {
-    double r1 = bsfit__pb_rcond(n1, kd, f->a11, p + 1, anorm, f->work, f->iwork);
+    /* A11 is the Gram matrix of the periodic basis functions 0..N-p-1, none of which
+    ** straddles the first knot U[0] (function j lives on [U_j, U_{j+p+1}], j+p+1 <= N):
+    ** cut the circle there and they are ordinary B-splines, so A11 is totally nonnegative
+    ** and its |A11^-1|_1 comes exactly from one solve (linalg.c) */
+    double r1 = bsfit__pb_rcond_tn(n1, kd, f->a11, p + 1, anorm, f->work);
     double r2 = bsfit__po_rcond(p, f->s22, p, anorm, f->work, f->iwork);
     *rcond = r1 < r2 ? r1 : r2;
   }

@@ -194,6 +194,108 @@ static void test_matches_dense_periodic(void **state) {
     }
 }
 
+/* 1-norm of the inverse of the leading k x k block of the N x N row-major A (dense
+** Gaussian elimination on the identity, independent of LAPACK) */
+static double inv_norm1(const double *A, size_t N, size_t k) {
+  double *B = calloc(k * k, sizeof(double)), *I = calloc(k * k, sizeof(double)), mx = 0.0;
+  size_t i, j, c, r;
+  for (i = 0; i < k; i++)
+    for (j = 0; j < k; j++) B[i * k + j] = A[i * N + j], I[i * k + j] = i == j;
+  for (c = 0; c < k; c++) { /* SPD: no pivoting needed */
+    for (r = c + 1; r < k; r++) {
+      double f = B[r * k + c] / B[c * k + c];
+      for (j = 0; j < k; j++) B[r * k + j] -= f * B[c * k + j], I[r * k + j] -= f * I[c * k + j];
+    }
+  }
+  for (c = k; c-- > 0;)
+    for (j = 0; j < k; j++) {
+      double s = I[c * k + j];
+      for (r = c + 1; r < k; r++) s -= B[c * k + r] * I[r * k + j];
+      I[c * k + j] = s / B[c * k + c];
+    }
+  for (j = 0; j < k; j++) {
+    double s = 0.0;
+    for (i = 0; i < k; i++) s += fabs(I[i * k + j]);
+    if (s > mx) mx = s;
+  }
+  free(B);
+  free(I);
+  return mx;
+}
+
+static void test_periodic_rcond(void **state) {
+  /* given noisy closed data, when fitted periodically, then the reported rcond is the
+  ** leading block's exact value (its inverse is computed from one solve, the block being
+  ** totally nonnegative) unless the Schur block's is smaller: exact_r1 >= rcond >=
+  ** min(exact_r1, exact_r2) */
+  test_rng r = {99};
+  size_t m = 80, N, k, i, j;
+  double pts[160], u[80], w[80];
+  int p;
+  (void)state;
+  noisy_closed(&r, m, 0.05, pts, u, w);
+  for (p = 2; p <= 3; p++)
+    for (N = (size_t)p + 4; N <= 24; N += 5) {
+      bsfit_fit_opts o;
+      bsfit_fitter *f;
+      bsfit_curve out;
+      bsfit_fit_report rep;
+      double *A = calloc(N * N, sizeof(double)), *Nm = calloc(m * N, sizeof(double));
+      double Nl[BSFIT_MAX_DEGREE + 1], anorm = 0.0, r1, r2, a, b, S[9], Sinv = 0.0;
+      const double *U;
+      size_t n1 = N - (size_t)p;
+      bsfit_fit_opts_init(&o);
+      o.degree = p;
+      o.count = N;
+      o.periodic = 1;
+      bsfit_curve_init(&out);
+      assert_int_equal(bsfit_fitter_new(&f, &o, NULL, NULL), BSFIT_OK);
+      assert_int_equal(bsfit_fitter_fit(f, pts, m, 2, u, w, &out, &rep, NULL, NULL), BSFIT_OK);
+      U = bsfit_fitter_knots(f, NULL);
+      a = U[p], b = U[N + (size_t)p];
+      for (k = 0; k < m; k++) { /* the folded collocation matrix, as dense_periodic */
+        double x = u[k];
+        size_t s;
+        while (x < a) x += b - a;
+        while (x >= b) x -= b - a;
+        s = bsfit_knots_find_span(U, N + (size_t)p, p, x);
+        bsfit_basis_funs(s, x, p, U, Nl);
+        for (j = 0; j <= (size_t)p; j++) Nm[k * N + (s - (size_t)p + j) % N] += Nl[j];
+      }
+      for (i = 0; i < N; i++)
+        for (j = 0; j < N; j++)
+          for (k = 0; k < m; k++) A[i * N + j] += Nm[k * N + i] * w[k] * Nm[k * N + j];
+      for (j = 0; j < N; j++) {
+        double s = 0.0;
+        for (i = 0; i < N; i++) s += fabs(A[i * N + j]);
+        if (s > anorm) anorm = s;
+      }
+      r1 = 1.0 / (anorm * inv_norm1(A, N, n1));
+      { /* S = A22 - A21 A11^-1 A12 = inverse of the trailing block of A^-1 */
+        double *Ainv = calloc(N * N, sizeof(double)), *B = calloc(N * N, sizeof(double));
+        memcpy(B, A, N * N * sizeof(double));
+        for (i = 0; i < N; i++) Ainv[i * N + i] = 1.0;
+        dense_chol_solve(B, Ainv, N, N);
+        for (i = 0; i < (size_t)p; i++) /* S^-1 is that trailing block */
+          for (j = 0; j < (size_t)p; j++) S[i * 3 + j] = Ainv[(n1 + i) * N + n1 + j];
+        for (j = 0; j < (size_t)p; j++) {
+          double s = 0.0;
+          for (i = 0; i < (size_t)p; i++) s += fabs(S[i * 3 + j]);
+          if (s > Sinv) Sinv = s;
+        }
+        free(Ainv);
+        free(B);
+      }
+      r2 = 1.0 / (anorm * Sinv);
+      assert_true(rep.rcond <= r1 * (1.0 + 1e-9));
+      assert_true(rep.rcond >= (r1 < r2 ? r1 : r2) * (1.0 - 1e-9));
+      free(A);
+      free(Nm);
+      bsfit_fitter_free(f);
+      bsfit_curve_free(&out);
+    }
+}
+
 /* d^k C at u from span s (left or right limit chosen by the span) */
 static void ders_at(const bsfit_curve *c, size_t s, double u, int nd, double *out) {
   double ders[(BSFIT_MAX_DEGREE + 1) * (BSFIT_MAX_DEGREE + 1)];
@@ -332,6 +434,7 @@ int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(test_reproduces_periodic_spline),
     cmocka_unit_test(test_matches_dense_periodic),
+    cmocka_unit_test(test_periodic_rcond),
     cmocka_unit_test(test_seam_is_smooth_and_beats_wrap_closing),
     cmocka_unit_test(test_periodic_interpolation),
     cmocka_unit_test(test_periodic_invalid_inputs),
