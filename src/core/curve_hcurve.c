@@ -87,57 +87,56 @@ bsfit_err bsfit__hc_unroll(const bsfit_curve *c, bsfit__hcurve *h, bsfit_status 
 ** Refinement and pieces
 ** ===================================================================== */
 
-static void axpby(double *dst, double alpha, const double *x, double beta, const double *y,
-                  size_t hd) {
-  size_t k;
-  for (k = 0; k < hd; k++) dst[k] = alpha * x[k] + beta * y[k];
-}
-
-bsfit_err bsfit__hc_refine(const bsfit__hcurve *h, const double *X, size_t nx,
-                           bsfit__hcurve *out, bsfit_status *st) {
-  size_t n = h->n, p = (size_t)h->p, hd = (size_t)h->hd, m = n + p, a, b, i, k, j, l;
-  const double *U = h->U, *P = h->P;
-  double *Ub, *Q;
-  bsfit_err e = bsfit__hc_alloc(out, h->p, h->hd, n + nx, &h->alloc, st);
-  if (e != BSFIT_OK) return e;
-  Ub = out->U;
-  Q = out->P;
-  if (nx == 0) {
-    memcpy(Ub, U, (m + 1) * sizeof(double));
-    memcpy(Q, P, n * hd * sizeof(double));
-    return BSFIT_OK;
+/* NURBS Book A5.4 with the book's last index n-1 and r knots X (declared in
+** curve_ops_internal.h: also the exact filter's refinement of surface rows). */
+void bsfit__refine_raw(int q, size_t n, size_t d, const double *U, const double *P,
+                       const double *X, size_t r, double *Ub, double *Q) {
+  size_t p = (size_t)q, m = n + p, a, b, j, row = d * sizeof(double);
+  ptrdiff_t i, k, jj;
+  if (r == 0) {
+    memcpy(Ub, U, (n + p + 1) * sizeof(double));
+    memcpy(Q, P, n * row);
+    return;
   }
-  /* NURBS Book A5.4 with the book's last index n-1 and r = nx-1 */
-  a = bsfit_knots_find_span(U, n, h->p, X[0]);
-  b = bsfit_knots_find_span(U, n, h->p, X[nx - 1]) + 1;
-  memcpy(Q, P, (a - p + 1) * hd * sizeof(double));
-  memcpy(Q + (b - 1 + nx) * hd, P + (b - 1) * hd, (n - b + 1) * hd * sizeof(double));
+  a = bsfit_knots_find_span(U, n, q, X[0]);
+  b = bsfit_knots_find_span(U, n, q, X[r - 1]) + 1;
+  memcpy(Q, P, (a - p + 1) * row);
+  memcpy(Q + (b - 1 + r) * d, P + (b - 1) * d, (n - b + 1) * row);
   memcpy(Ub, U, (a + 1) * sizeof(double));
-  memcpy(Ub + b + p + nx, U + b + p, (m - b - p + 1) * sizeof(double));
-  i = b + p - 1;
-  k = b + p + nx - 1;
-  for (j = nx; j-- > 0;) {
-    double x = X[j];
-    while (x <= U[i] && i > a) {
-      memcpy(Q + (k - p - 1) * hd, P + (i - p - 1) * hd, hd * sizeof(double));
+  for (j = b + p; j <= m; j++) Ub[j + r] = U[j];
+  i = (ptrdiff_t)(b + p) - 1;
+  k = i + (ptrdiff_t)r;
+  for (jj = (ptrdiff_t)r - 1; jj >= 0; jj--) {
+    size_t l;
+    while (X[jj] <= U[i] && i > (ptrdiff_t)a) {
+      memcpy(Q + (size_t)(k - (ptrdiff_t)p - 1) * d, P + (size_t)(i - (ptrdiff_t)p - 1) * d, row);
       Ub[k] = U[i];
       k--;
       i--;
     }
-    memcpy(Q + (k - p - 1) * hd, Q + (k - p) * hd, hd * sizeof(double));
+    memcpy(Q + (size_t)(k - (ptrdiff_t)p - 1) * d, Q + (size_t)(k - (ptrdiff_t)p) * d, row);
     for (l = 1; l <= p; l++) {
-      size_t ind = k - p + l;
-      double alpha = Ub[k + l] - x;
-      if (alpha == 0.0) {
-        memcpy(Q + (ind - 1) * hd, Q + ind * hd, hd * sizeof(double));
-      } else {
-        alpha /= Ub[k + l] - U[i - p + l];
-        axpby(Q + (ind - 1) * hd, alpha, Q + (ind - 1) * hd, 1.0 - alpha, Q + ind * hd, hd);
+      size_t ind = (size_t)k - p + l, c;
+      double alfa = Ub[(size_t)k + l] - X[jj], *lo = Q + (ind - 1) * d, *hi = Q + ind * d;
+      if (alfa == 0.0) {
+        memcpy(lo, hi, row);
+        continue;
       }
+      alfa /= Ub[(size_t)k + l] - U[(size_t)i - p + l];
+      for (c = 0; c < d; c++) lo[c] = alfa * lo[c] + (1.0 - alfa) * hi[c];
     }
-    Ub[k] = x;
+    Ub[k] = X[jj];
     k--;
   }
+}
+
+/* }==================================================================== */
+
+bsfit_err bsfit__hc_refine(const bsfit__hcurve *h, const double *X, size_t nx,
+                           bsfit__hcurve *out, bsfit_status *st) {
+  bsfit_err e = bsfit__hc_alloc(out, h->p, h->hd, h->n + nx, &h->alloc, st);
+  if (e != BSFIT_OK) return e;
+  bsfit__refine_raw(h->p, h->n, (size_t)h->hd, h->U, h->P, X, nx, out->U, out->P);
   return BSFIT_OK;
 }
 

@@ -30,6 +30,12 @@ bsfit_err bsfit__hc_from_curve(const bsfit_curve *c, bsfit__hcurve *h, bsfit_sta
 /* A periodic curve unrolled over three periods (one before, one after the domain), as an
 ** open curve with domain [a - T, b + T]: the middle period's knots are c's own. */
 bsfit_err bsfit__hc_unroll(const bsfit_curve *c, bsfit__hcurve *h, bsfit_status *st);
+/* Knot refinement (NURBS Book A5.4) on raw arrays, for curves and for surface nets
+** filtered as curves of rows: inserts the r sorted knots X (inside the domain,
+** multiplicities already checked) into the degree-q spline (U, P) of n points of d
+** doubles each; Ub gets n+r+q+1 knots, Q n+r points (caller-owned). */
+void bsfit__refine_raw(int q, size_t n, size_t d, const double *U, const double *P,
+                       const double *X, size_t r, double *Ub, double *Q);
 /* Knot refinement (A5.4): X sorted, within h's domain, multiplicities already checked. */
 bsfit_err bsfit__hc_refine(const bsfit__hcurve *h, const double *X, size_t nx,
                            bsfit__hcurve *out, bsfit_status *st);

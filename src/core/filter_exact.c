@@ -10,6 +10,7 @@
 ** period of the result is read back in expanded periodic form.
 */
 #include "filter_internal.h"
+#include "curve_ops_internal.h"
 
 #include <float.h>
 #include <math.h>
@@ -49,54 +50,6 @@ static void scratch_release(scratch *s) {
 
 /* }==================================================================== */
 
-/* {====================================================================
-** Knot refinement (NURBS Book A5.4) on raw arrays
-** ===================================================================== */
-
-/* Inserts the r sorted knots X (each inside the domain, none at its ends) into the
-** degree-q spline (U, P) of n points of d doubles: Ub gets n+r+q+1 knots, Q n+r points. */
-static void refine(int q, size_t n, size_t d, const double *U, const double *P, const double *X,
-                   size_t r, double *Ub, double *Q) {
-  size_t p = (size_t)q, m = n + p, a, b, j, row = d * sizeof(double);
-  ptrdiff_t i, k, jj;
-  if (r == 0) {
-    memcpy(Ub, U, (n + p + 1) * sizeof(double));
-    memcpy(Q, P, n * row);
-    return;
-  }
-  a = bsfit_knots_find_span(U, n, q, X[0]);
-  b = bsfit_knots_find_span(U, n, q, X[r - 1]) + 1;
-  memcpy(Q, P, (a - p + 1) * row);
-  memcpy(Q + (b - 1 + r) * d, P + (b - 1) * d, (n - b + 1) * row);
-  memcpy(Ub, U, (a + 1) * sizeof(double));
-  for (j = b + p; j <= m; j++) Ub[j + r] = U[j];
-  i = (ptrdiff_t)(b + p) - 1;
-  k = i + (ptrdiff_t)r;
-  for (jj = (ptrdiff_t)r - 1; jj >= 0; jj--) {
-    size_t l;
-    while (X[jj] <= U[i] && i > (ptrdiff_t)a) {
-      memcpy(Q + (size_t)(k - (ptrdiff_t)p - 1) * d, P + (size_t)(i - (ptrdiff_t)p - 1) * d, row);
-      Ub[k] = U[i];
-      k--;
-      i--;
-    }
-    memcpy(Q + (size_t)(k - (ptrdiff_t)p - 1) * d, Q + (size_t)(k - (ptrdiff_t)p) * d, row);
-    for (l = 1; l <= p; l++) {
-      size_t ind = (size_t)k - p + l, c;
-      double alfa = Ub[(size_t)k + l] - X[jj], *lo = Q + (ind - 1) * d, *hi = Q + ind * d;
-      if (alfa == 0.0) {
-        memcpy(lo, hi, row);
-        continue;
-      }
-      alfa /= Ub[(size_t)k + l] - U[(size_t)i - p + l];
-      for (c = 0; c < d; c++) lo[c] = alfa * lo[c] + (1.0 - alfa) * hi[c];
-    }
-    Ub[k] = X[jj];
-    k--;
-  }
-}
-
-/* }==================================================================== */
 
 /* {====================================================================
 ** Open splines
@@ -257,8 +210,8 @@ bsfit_err bsfit__filter_exact_open(const bsfit__fview *in, double delta,
     scratch_release(&s);
     return e;
   }
-  refine((int)q, nA, d, Kp, Ap, Xp, nxp, out->U, out->P);
-  refine((int)q, nA, d, Km, Am, Xm, nxm, T, Rm); /* T is rebuilt identical */
+  bsfit__refine_raw((int)q, nA, d, Kp, Ap, Xp, nxp, out->U, out->P);
+  bsfit__refine_raw((int)q, nA, d, Km, Am, Xm, nxm, T, Rm); /* T is rebuilt identical */
   inv = 1.0 / (2.0 * delta);
   for (i = 0; i < out->n * d; i++) out->P[i] = (out->P[i] - Rm[i]) * inv;
   scratch_release(&s);
