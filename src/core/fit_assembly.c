@@ -239,15 +239,24 @@ FIT_INLINE int moment_assemble(bsfit_fitter *f, const double *pts, size_t m, con
 }
 
 typedef struct resid_acc {
-  double wss, wsum, max;
+  double wss, wsum, max; /* max starts below 0: no point yet */
   size_t imax;
 } resid_acc;
+
+/* One point's squared distance dd into the sums (and its distance into res). */
+FIT_INLINE void resid_add(resid_acc *a, size_t k, double dd, double wk, double *res) {
+  double r = sqrt(dd);
+  if (res) res[k] = r;
+  a->wss += wk * dd;
+  a->wsum += wk;
+  if (r > a->max) a->max = r, a->imax = k;
+}
 
 FIT_INLINE void moment_residuals(const bsfit_fitter *f, const double *ctrl, const double *pts,
                                  size_t m, const int dim, const double *u, const double *w,
                                  const int p, double *res, resid_acc *out) {
-  size_t k = 0, stride = bsfit__fit_poly_stride(p), imax = 0;
-  double wss = 0.0, wsum = 0.0, mx = -1.0;
+  size_t k = 0, stride = bsfit__fit_poly_stride(p);
+  resid_acc acc = {0.0, 0.0, -1.0, 0};
   span_walk sw;
   int i, a, c;
   walk_init(&sw, f);
@@ -268,26 +277,19 @@ FIT_INLINE void moment_residuals(const bsfit_fitter *f, const double *ctrl, cons
       }
     do {
       const double *q = pts + k * (size_t)dim;
-      double wk = w ? w[k] : 1.0, t = (x - mid) * scale, dd = 0.0, r;
+      double wk = w ? w[k] : 1.0, t = (x - mid) * scale, dd = 0.0;
       for (c = 0; c < dim; c++) {
         double v = D[p * 4 + c], d;
         for (a = p - 1; a >= 0; a--) v = v * t + D[a * 4 + c];
         d = q[c] - v;
         dd += d * d;
       }
-      r = sqrt(dd);
-      if (res) res[k] = r;
-      wss += wk * dd;
-      wsum += wk;
-      if (r > mx) mx = r, imax = k;
+      resid_add(&acc, k, dd, wk, res);
       if (++k == m) break;
       x = walk_param(&sw, u, k);
     } while (x >= lo && x < hi);
   }
-  out->wss = wss;
-  out->wsum = wsum;
-  out->max = mx < 0.0 ? 0.0 : mx;
-  out->imax = imax;
+  *out = acc;
 }
 
 #if defined(__GNUC__)
@@ -333,8 +335,8 @@ static int cubic2_assemble(bsfit_fitter *f, const double *pts, size_t m, const d
 static void cubic2_residuals(const bsfit_fitter *f, const double *ctrl, const double *pts,
                              size_t m, const double *u, const double *w, double *res,
                              resid_acc *out) {
-  size_t k = 0, stride = bsfit__fit_poly_stride(3), imax = 0;
-  double wss = 0.0, wsum = 0.0, mx = -1.0;
+  size_t k = 0, stride = bsfit__fit_poly_stride(3);
+  resid_acc acc = {0.0, 0.0, -1.0, 0};
   span_walk sw;
   int i, a;
   walk_init(&sw, f);
@@ -356,24 +358,17 @@ static void cubic2_residuals(const bsfit_fitter *f, const double *ctrl, const do
       D[a] = v;
     }
     do {
-      double wk = w ? w[k] : 1.0, t = (x - mid) * scale, dd, r;
+      double wk = w ? w[k] : 1.0, t = (x - mid) * scale, dd;
       pair q = {pts[2 * k], pts[2 * k + 1]}, d = ((D[3] * t + D[2]) * t + D[1]) * t + D[0];
       d = q - d;
       d *= d;
       dd = d[0] + d[1];
-      r = sqrt(dd);
-      if (res) res[k] = r;
-      wss += wk * dd;
-      wsum += wk;
-      if (r > mx) mx = r, imax = k;
+      resid_add(&acc, k, dd, wk, res);
       if (++k == m) break;
       x = walk_param(&sw, u, k);
     } while (x >= lo && x < hi);
   }
-  out->wss = wss;
-  out->wsum = wsum;
-  out->max = mx < 0.0 ? 0.0 : mx;
-  out->imax = imax;
+  *out = acc;
 }
 #endif
 
@@ -453,8 +448,9 @@ static int basis_assemble(bsfit_fitter *f, const double *pts, size_t m, int dim,
 static void basis_residuals(const bsfit_fitter *f, const double *ctrl, const double *pts,
                             size_t m, int dim, const double *u, const double *w, double *res,
                             resid_acc *out) {
-  double N[BSFIT_MAX_DEGREE + 1], wss = 0.0, wsum = 0.0, mx = -1.0;
-  size_t k = 0, imax = 0;
+  double N[BSFIT_MAX_DEGREE + 1];
+  size_t k = 0;
+  resid_acc acc = {0.0, 0.0, -1.0, 0};
   span_walk sw;
   int p = f->p, i, c;
   walk_init(&sw, f);
@@ -466,26 +462,19 @@ static void basis_residuals(const bsfit_fitter *f, const double *ctrl, const dou
     P = ctrl + (sw.s - (size_t)p) * (size_t)dim;
     do {
       const double *q = pts + k * (size_t)dim;
-      double wk = w ? w[k] : 1.0, dd = 0.0, r;
+      double wk = w ? w[k] : 1.0, dd = 0.0;
       basis_inv(sw.U, inv, sw.s, x, p, N);
       for (c = 0; c < dim; c++) {
         double v = q[c];
         for (i = 0; i <= p; i++) v -= N[i] * P[i * dim + c];
         dd += v * v;
       }
-      r = sqrt(dd);
-      if (res) res[k] = r;
-      wss += wk * dd;
-      wsum += wk;
-      if (r > mx) mx = r, imax = k;
+      resid_add(&acc, k, dd, wk, res);
       if (++k == m) break;
       x = walk_param(&sw, u, k);
     } while (x >= lo && x < hi);
   }
-  out->wss = wss;
-  out->wsum = wsum;
-  out->max = mx < 0.0 ? 0.0 : mx;
-  out->imax = imax;
+  *out = acc;
 }
 
 /* }====================================================================== */
@@ -521,7 +510,7 @@ void bsfit__fit_residuals(const bsfit_fitter *f, const double *ctrl, const doubl
   else if (p <= MOMENT_MAX_DEGREE) moment_residuals(f, ctrl, pts, m, dim, u, w, p, res, &acc);
   else basis_residuals(f, ctrl, pts, m, dim, u, w, res, &acc);
   *wrms = acc.wsum > 0.0 ? sqrt(acc.wss / acc.wsum) : 0.0;
-  *max = acc.max;
+  *max = acc.max < 0.0 ? 0.0 : acc.max;
   *imax = acc.imax;
 }
 

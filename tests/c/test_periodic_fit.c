@@ -56,11 +56,14 @@ static void dense_chol_solve(double *A, double *B, size_t n, size_t nrhs) {
 
 /* Dense reference for a periodic fit on the expanded knots U (N distinct control points):
 ** collocation columns of wrapped control points are folded (column j+N onto j). */
-static void dense_periodic(const double *U, int p, size_t N, const double *pts, size_t m,
-                           const double *u, const double *w, double *P) {
-  double *Nm = calloc(m * N, sizeof(double)), *A = calloc(N * N, sizeof(double));
-  double Nl[BSFIT_MAX_DEGREE + 1], a = U[p], b = U[N + (size_t)p];
-  size_t k, i, j, c;
+/* The folded m x N collocation matrix (row-major, calloc'ed) and, in A (N x N, zeroed by
+** the caller), the normal matrix N^T W N. */
+static double *folded_collocation(const double *U, int p, size_t N, const double *u, size_t m,
+                                  const double *w, double *A) {
+  double *Nm = calloc(m * N, sizeof(double)), Nl[BSFIT_MAX_DEGREE + 1], a = U[p],
+         b = U[N + (size_t)p];
+  size_t k, i, j;
+  assert_non_null(Nm);
   for (k = 0; k < m; k++) {
     double x = u[k];
     size_t s;
@@ -70,10 +73,18 @@ static void dense_periodic(const double *U, int p, size_t N, const double *pts, 
     bsfit_basis_funs(s, x, p, U, Nl);
     for (j = 0; j <= (size_t)p; j++) Nm[k * N + (s - (size_t)p + j) % N] += Nl[j];
   }
-  memset(P, 0, N * 2 * sizeof(double));
-  for (i = 0; i < N; i++) {
+  for (i = 0; i < N; i++)
     for (j = 0; j < N; j++)
       for (k = 0; k < m; k++) A[i * N + j] += Nm[k * N + i] * w[k] * Nm[k * N + j];
+  return Nm;
+}
+
+static void dense_periodic(const double *U, int p, size_t N, const double *pts, size_t m,
+                           const double *u, const double *w, double *P) {
+  double *A = calloc(N * N, sizeof(double)), *Nm = folded_collocation(U, p, N, u, m, w, A);
+  size_t k, i, c;
+  memset(P, 0, N * 2 * sizeof(double));
+  for (i = 0; i < N; i++) {
     for (c = 0; c < 2; c++)
       for (k = 0; k < m; k++) P[i * 2 + c] += Nm[k * N + i] * w[k] * pts[k * 2 + c];
   }
@@ -229,7 +240,7 @@ static void test_periodic_rcond(void **state) {
   ** totally nonnegative) unless the Schur block's is smaller: exact_r1 >= rcond >=
   ** min(exact_r1, exact_r2) */
   test_rng r = {99};
-  size_t m = 80, N, k, i, j;
+  size_t m = 80, N, i, j;
   double pts[160], u[80], w[80];
   int p;
   (void)state;
@@ -240,8 +251,7 @@ static void test_periodic_rcond(void **state) {
       bsfit_fitter *f;
       bsfit_curve out;
       bsfit_fit_report rep;
-      double *A = calloc(N * N, sizeof(double)), *Nm = calloc(m * N, sizeof(double));
-      double Nl[BSFIT_MAX_DEGREE + 1], anorm = 0.0, r1, r2, a, b, S[9], Sinv = 0.0;
+      double *A = calloc(N * N, sizeof(double)), *Nm, anorm = 0.0, r1, r2, S[9], Sinv = 0.0;
       const double *U;
       size_t n1 = N - (size_t)p;
       bsfit_fit_opts_init(&o);
@@ -252,19 +262,7 @@ static void test_periodic_rcond(void **state) {
       assert_int_equal(bsfit_fitter_new(&f, &o, NULL, NULL), BSFIT_OK);
       assert_int_equal(bsfit_fitter_fit(f, pts, m, 2, u, w, &out, &rep, NULL, NULL), BSFIT_OK);
       U = bsfit_fitter_knots(f, NULL);
-      a = U[p], b = U[N + (size_t)p];
-      for (k = 0; k < m; k++) { /* the folded collocation matrix, as dense_periodic */
-        double x = u[k];
-        size_t s;
-        while (x < a) x += b - a;
-        while (x >= b) x -= b - a;
-        s = bsfit_knots_find_span(U, N + (size_t)p, p, x);
-        bsfit_basis_funs(s, x, p, U, Nl);
-        for (j = 0; j <= (size_t)p; j++) Nm[k * N + (s - (size_t)p + j) % N] += Nl[j];
-      }
-      for (i = 0; i < N; i++)
-        for (j = 0; j < N; j++)
-          for (k = 0; k < m; k++) A[i * N + j] += Nm[k * N + i] * w[k] * Nm[k * N + j];
+      Nm = folded_collocation(U, p, N, u, m, w, A);
       for (j = 0; j < N; j++) {
         double s = 0.0;
         for (i = 0; i < N; i++) s += fabs(A[i * N + j]);
