@@ -43,10 +43,22 @@ print(("  without the closest-point deviations:              %8.3f ms")
 print(("periodic, 40 points:                                 %8.3f ms"):format(time(function() periodic.run(P) end)))
 print(("  without the closest-point deviations:              %8.3f ms")
       :format(time(function() periodic.run(P, nomeasure) end)))
-local _, rep = carvalho.run(P)
-local steps = {}
-for _, s in ipairs(carvalho.order) do steps[#steps + 1] = ("%s %.3f"):format(s, rep.times[s]) end
-print("carvalho steps (ms, one run): " .. table.concat(steps, ", "))
+-- the same section with two points down-weighted (point_weights 0.05): the trusted
+-- parameters, weights and seam score
+local pw = {}
+for i = 1, #P do pw[i] = (i == 7 or i == 23) and 0.05 or 1 end
+pw = bs.vector.new(pw)
+print(("  with 2 of 40 points down-weighted:                 %8.3f ms")
+      :format(time(function() periodic.run(P, { point_weights = pw }) end)))
+-- the time per step of one run (after the warm-up runs above)
+local function steps_of(S)
+  local _, rep = S.run(P)
+  local t = {}
+  for _, s in ipairs(S.order) do t[#t + 1] = ("%s %.3f"):format(s, rep.times[s] or 0) end
+  return table.concat(t, ", ")
+end
+print("carvalho steps (ms, one run): " .. steps_of(carvalho))
+print("periodic steps (ms, one run): " .. steps_of(periodic))
 
 local nsec, jobs = tonumber(arg and arg[1]) or 0, tonumber(arg and arg[2]) or 2
 if nsec > 0 then

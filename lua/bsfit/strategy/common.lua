@@ -1,8 +1,9 @@
 -- lua/bsfit/strategy/common.lua
 -- What the fitting strategies share: the step runner (option checking, per-step
 -- timing, the `opts[step]` override rule), the steps both strategies use
--- (chord parameters, weights, the paper's control-point count), the deviation
--- measure and the report.
+-- (chord parameters, weights, the paper's control-point count), the trusted points
+-- of a file's point weights (and the parameters and weights that follow them), the
+-- deviation measure and the report.
 --
 -- A strategy is a table
 --   { name = "...", order = {"params", "weights", ...}, steps = {params = f, ...},
@@ -17,8 +18,10 @@ local bs = require "bsfit"
 
 local M = {}
 
--- os is absent in a sandboxed engine: timing then reads 0.
-local clock = (os and os.clock) or function() return 0 end
+-- The step timer: the monotonic wall clock of bs.parallel (cheap, and per run even
+-- when `reconstruct -j N` runs sections on several threads, where os.clock would
+-- count every thread's CPU time); os.clock without it; 0 when neither is there.
+local clock = (bs.parallel and bs.parallel.clock) or (os and os.clock) or function() return 0 end
 M.clock = clock
 
 -- {======================================================================
@@ -63,10 +66,25 @@ end
 -- Point i of P as an array.
 function M.point(P, i) return { P:get(i) } end
 
--- The weights vector w rotated like P:rotate(k): element k becomes the first.
+-- The weights vector w (Vector or table) rotated like P:rotate(k): element k becomes
+-- the first. A new Vector, made from two slices of w's bytes (no per-element Lua work).
 function M.rotate_vector(w, k)
-  local t, n, r = w:totable(), #w, {}
-  for i = 1, n do r[i] = t[(i + k - 2) % n + 1] end
+  if type(w) == "table" then w = bs.vector.new(w) end
+  local s, o = w:bytes(), 8 * (k - 1)
+  return bs.vector.frombytes(s:sub(o + 1) .. s:sub(1, o))
+end
+
+-- Closed parameters u (Vector or table, one period [0, 1)) of points rotated like
+-- P:rotate(k): shifted so that point k's is 0, as a new Vector.
+function M.rotate_params(u, k)
+  local t = type(u) == "table" and u or u:totable()
+  local m, r = #t, {}
+  local u0, below1 = t[k], 1 - 2 ^ -53
+  for i = 1, m do
+    local v = t[(i + k - 2) % m + 1] - u0
+    if v < 0 then v = v + 1 end
+    r[i] = v < 1 and v or below1 -- a zero closing chord would give exactly 1
+  end
   return bs.vector.new(r)
 end
 
@@ -79,6 +97,126 @@ end
 -- Whether the strategy fits a closed curve (setting `closed`, default true).
 function M.closed(ctx) return ctx.settings.closed ~= false end
 
+-- The per-point weights of the file (setting point_weights, a Vector or table) as a
+-- Lua array, checked against the m points; nil without them.
+local function point_weights(pw, m)
+  if pw == nil then return nil end
+  local mt = getmetatable(pw)
+  if type(pw) ~= "table" and not (type(mt) == "table" and mt.__name == "bsfit.Vector") then
+    error("bad argument #2 to 'run' (option 'point_weights' must be a bsfit.Vector or table)", 0)
+  end
+  local t = type(pw) == "table" and pw or pw:totable()
+  if #t ~= m then error(("point_weights has %d values for %d points"):format(#t, m), 0) end
+  return t
+end
+
+-- The setting trust (default 0.1), checked.
+local function trust_of(ctx)
+  local trust = ctx.settings.trust or 0.1
+  if type(trust) ~= "number" or not (trust >= 0 and trust < 1) then
+    error("bad argument #2 to 'run' (option 'trust' must be a number in [0, 1))", 0)
+  end
+  return trust
+end
+
+-- The element of rank #w // 2 + 1 of the array w (the median the C kernels select),
+-- by counting equal values: files hold few distinct weights.
+local function median(w)
+  local count, keys = {}, {}
+  for i = 1, #w do
+    local v = w[i]
+    local c = count[v]
+    if c then count[v] = c + 1 else count[v] = 1; keys[#keys + 1] = v end
+  end
+  table.sort(keys)
+  local want, seen = #w // 2 + 1, 0
+  for _, v in ipairs(keys) do
+    seen = seen + count[v]
+    if seen >= want then return v end
+  end
+end
+
+-- The trusted points (the rule of bs.params_trusted): weight at least `trust` (setting,
+-- default 0.1) times the median of the point_weights. Returns nil when every point is
+-- trusted (no point_weights, equal weights, trust 0), else a table
+--   { out = {untrusted indices, increasing}, isout = {[i] = true}, n = #trusted,
+--     points = Points of the trusted ones (nil when fewer than 3) }
+-- P: the run's points (default ctx.P). Computed once per run (kept in ctx.cache when
+-- there is one). The work per point is two plain loops; what follows from it works on
+-- the few untrusted points and the runs of trusted ones.
+function M.trusted(ctx, P)
+  if ctx.settings.point_weights == nil then return nil end
+  local cache = ctx.cache or {}
+  local c = cache.trusted
+  if c ~= nil then return c or nil end
+  P = P or ctx.P
+  local trust = trust_of(ctx)
+  local w = point_weights(ctx.settings.point_weights, #P)
+  c = false
+  if trust > 0 then
+    local m, lo, hi = #w, math.huge, 0
+    for i = 1, m do
+      local v = w[i]
+      if type(v) ~= "number" or not (v > 0 and v < math.huge) then
+        error(("point_weights: value %d is %s (must be positive and finite)"):format(i, tostring(v)), 0)
+      end
+      if v < lo then lo = v end
+      if v > hi then hi = v end
+    end
+    if trust * hi > lo then -- else every weight is >= trust x max >= trust x median
+      local cut, out, isout = trust * median(w), {}, {}
+      for i = 1, m do
+        if w[i] < cut then out[#out + 1] = i; isout[i] = true end
+      end
+      if #out > 0 then
+        c = { out = out, isout = isout, n = m - #out }
+        if c.n >= 3 then c.points = M.subset_runs(P, out) end
+      end
+    end
+  end
+  cache.trusted = c
+  return c or nil
+end
+
+-- The runs of indices 1..m that avoid the increasing indices `out`: an array of
+-- {first, last} pairs (in order, empty runs left out).
+local function runs(out, m)
+  local r, a = {}, 1
+  for j = 1, #out + 1 do
+    local b = (out[j] or m + 1) - 1
+    if b >= a then r[#r + 1] = { a, b } end
+    a = b + 2
+  end
+  return r
+end
+
+-- The points of P not in the increasing indices `out`, as a new Points (one byte
+-- slice per run of kept points).
+function M.subset_runs(P, out)
+  local s, dim = P:bytes(), P:dim()
+  local size, parts = 8 * dim, {}
+  for _, r in ipairs(runs(out, #P)) do parts[#parts + 1] = s:sub((r[1] - 1) * size + 1, r[2] * size) end
+  return bs.points.frombytes(table.concat(parts), dim)
+end
+
+-- The 1-based index in the full data of the j-th trusted point.
+function M.trusted_index(t, j)
+  local i = j
+  for _, o in ipairs(t.out) do
+    if o <= i then i = i + 1 else break end
+  end
+  return i
+end
+
+-- The maximum of Vector d (values in the order of the points rotated so that point
+-- k is first) over the trusted points of t.
+function M.trusted_max(d, t, k)
+  local m = #d
+  d = d:copy()
+  for _, i in ipairs(t.out) do d:set((i - k) % m + 1, 0) end
+  return (d:max())
+end
+
 -- Chord-length parameters (SPEC 2.1); closed data includes the closing chord.
 -- closed: true / false, or nil to follow the `closed` setting.
 function M.params_chord(closed)
@@ -89,11 +227,66 @@ function M.params_chord(closed)
   end
 end
 
+-- Chord parameters (SPEC 2.1) that down-weighted points cannot stretch: with
+-- point_weights, computed over the trusted points only and interpolated for the
+-- others (bs.params_trusted, the rule of M.trusted); without, plain bs.params.
+-- closed: true / false, or nil to follow the `closed` setting.
+function M.params_trusted(closed)
+  return function(P, ctx)
+    local c, s = closed, ctx.settings
+    if c == nil then c = M.closed(ctx) end
+    if s.point_weights == nil then return bs.params(P, s.param, { closed = c }) end
+    point_weights(s.point_weights, #P) -- the strategies' messages for misuse
+    return M.ok("params", bs.params_trusted(P, s.param, { closed = c, weights = s.point_weights,
+                                                         trust = trust_of(ctx) }))
+  end
+end
+
 -- Weights from circumradius (SPEC 2.5, computed in C), times the per-point
 -- weights read from the file (ctx.settings.point_weights) when there are any.
 function M.weights_circumradius(P, ctx)
   local w = bs.weights.circumradius(P, { closed = M.closed(ctx) })
   return M.scale_weights(w, ctx.settings.point_weights)
+end
+
+-- The same rule read off the shape the trusted points describe (M.trusted): the
+-- circles pass through trusted neighbours only, so an outlier neither looks like a
+-- tight corner nor makes its neighbours look like one (both would pull the curve
+-- towards it); an untrusted point gets the weight interpolated, by index, between its
+-- trusted neighbours (open data: the nearest one at the ends). Then times the
+-- point_weights. Without untrusted points this is M.weights_circumradius. The
+-- trusted points' weights are copied as byte runs: Lua touches only the others.
+function M.weights_circumradius_trusted(P, ctx)
+  local t = M.trusted(ctx, P)
+  if t == nil or t.points == nil then return M.weights_circumradius(P, ctx) end
+  local closed, m, out, nt = M.closed(ctx), #P, t.out, t.n
+  local wt = bs.weights.circumradius(t.points, { closed = closed })
+  local s, parts = wt:bytes(), {}
+  local k, i = 1, 1 -- out[k]: the next untrusted index; i: the next index to write
+  while i <= m do
+    local a = out[k]
+    if a == nil or a > i then -- trusted i..e: subset positions i-k+1 .. e-k+1
+      local e = (a or m + 1) - 1
+      parts[#parts + 1] = s:sub(8 * (i - k) + 1, 8 * (e - k + 1))
+      i = e + 1
+    else -- untrusted a..b, between trusted L and R (cyclically when closed)
+      local k0, b = k, a
+      while out[k + 1] == b + 1 do k = k + 1; b = b + 1 end
+      local L, R, vL, vR
+      if a > 1 then L, vL = a - 1, wt:get(a - k0)
+      elseif closed then L, vL = M.trusted_index(t, nt) - m, wt:get(nt) end
+      if b < m then R, vR = b + 1, wt:get(b + 1 - k)
+      elseif closed then R, vR = M.trusted_index(t, 1) + m, wt:get(1) end
+      L, vL = L or R, vL or vR
+      R, vR = R or L, vR or vL
+      for x = a, b do
+        local f = R > L and (x - L) / (R - L) or 0
+        parts[#parts + 1] = string.pack("d", vL + (vR - vL) * f)
+      end
+      i, k = b + 1, k + 1
+    end
+  end
+  return M.scale_weights(bs.vector.frombytes(table.concat(parts)), ctx.settings.point_weights)
 end
 
 -- w times the optional per-point weights pw (Vector or table), as a new Vector.
@@ -295,10 +488,24 @@ function M.report(ctx)
   return rep
 end
 
--- The measure step: deviations of the original points from ctx.curve.
+-- The measure step: deviations of the original points from ctx.curve. With
+-- untrusted points (M.trusted), also max_trusted, rms_trusted and max_trusted_index:
+-- the same over the trusted points only (what the fit was asked to follow).
 function M.measure(P, ctx)
   local d, rms, max, imax = M.deviations(ctx.curve, P)
-  return { residuals = d, rms = rms, max = max, max_index = imax }
+  local r = { residuals = d, rms = rms, max = max, max_index = imax }
+  local t = M.trusted(ctx)
+  if t ~= nil then
+    local isout, sum, tmax, ti = t.isout, 0, -1, 1
+    for i = 1, #d do
+      if not isout[i] then
+        sum = sum + d[i] * d[i]
+        if d[i] > tmax then tmax, ti = d[i], i end
+      end
+    end
+    r.max_trusted, r.max_trusted_index, r.rms_trusted = tmax, ti, math.sqrt(sum / t.n)
+  end
+  return r
 end
 
 -- }======================================================================
