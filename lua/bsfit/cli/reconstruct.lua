@@ -298,6 +298,7 @@ function M.section(spec)
     if not C then error(tostring(rep), 0) end
     row.control_points = C:distinct()
     row.rms, row.max, row.max_index = rep.rms, rep.max, rep.max_index
+    row.max_trusted = rep.max_trusted -- set when the file down-weights some points
     row.start_index = rep.start_index
     write_outputs(spec, P, C, rep, samples(C, spec.samples))
   end)
@@ -320,7 +321,7 @@ end
 -- =======================================================================
 
 local summary_columns = { "name", "input", "points", "control_points", "rms", "max", "max_index",
-                          "start_index", "status", "error" }
+                          "max_trusted", "start_index", "status", "error" }
 
 local function specs_of(o, inputs)
   local specs = {}
