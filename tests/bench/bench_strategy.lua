@@ -1,8 +1,9 @@
 -- bench_strategy.lua: time of the fitting strategies on a 40-point section, and
 -- the batch throughput of `bsfit reconstruct`.
---   bsfit tests/bench/bench_strategy.lua [SECTIONS [JOBS]]
+--   bsfit tests/bench/bench_strategy.lua [SECTIONS [JOBS [STRATEGY]]]
 -- SECTIONS (default 0: skip the batch) 40-point files are written to a temporary
--- directory and reconstructed with -j JOBS (default 2), --format json.
+-- directory and reconstructed with -j JOBS (default 2), --format json, --strategy
+-- STRATEGY (default auto, the default of bsfit reconstruct).
 local bs = require "bsfit"
 local carvalho = require "bsfit.strategy.carvalho"
 local periodic = require "bsfit.strategy.periodic"
@@ -61,6 +62,7 @@ print("carvalho steps (ms, one run): " .. steps_of(carvalho))
 print("periodic steps (ms, one run): " .. steps_of(periodic))
 
 local nsec, jobs = tonumber(arg and arg[1]) or 0, tonumber(arg and arg[2]) or 2
+local strategy = arg and arg[3] or "auto"
 if nsec > 0 then
   local dir = os.tmpname()
   os.remove(dir)
@@ -74,8 +76,10 @@ if nsec > 0 then
   end
   local rc = require "bsfit.cli.reconstruct"
   local t0 = clock()
-  rc.main { dir .. "/in", "-o", dir .. "/out", "-j", tostring(jobs), "--format", "json", "-q" }
+  rc.main { dir .. "/in", "-o", dir .. "/out", "-j", tostring(jobs), "--format", "json", "-q",
+            "--strategy", strategy }
   local dt = clock() - t0
-  print(("batch: %d sections, -j %d: %.2f s, %.0f sections/s"):format(nsec, jobs, dt, nsec / dt))
+  print(("batch (%s): %d sections, -j %d: %.2f s, %.0f sections/s"):format(strategy, nsec, jobs,
+        dt, nsec / dt))
   os.execute("rm -rf " .. dir)
 end
