@@ -12,15 +12,27 @@
 /** Estimates the standard deviation of the noise normal to the curve, from the
 ** ordered points alone.
 **
-** Each point's window of 2h+1 neighbours (h = 4; shifted inwards at the ends of open
-** data) is expressed in a local frame (origin at the point, first axis along the chord
-** of the window); the normal coordinate(s) are fitted by a cubic in the tangential
-** coordinate, and the point's residual is divided by sqrt(1 - leverage), which makes it
-** an unbiased sample of the noise whatever the spacing. The scale is the 40% quantile of
-** the standardised residual magnitudes divided by that of the noise distribution
-** (half-normal in 2D: 0.5244; chi with 2 degrees of freedom in 3D: 1.0108), so corners
-** and outliers, which inflate the upper residuals, do not bias it even when a third of
-** the windows hold one.
+** Each point is predicted from its neighbours (leave-one-out) by a polynomial in the
+** normal coordinate(s) of a local frame (origin at the point, first axis along the
+** chord of the window), and its prediction error is divided by sqrt(1 + variance
+** factor of the prediction), which makes it an unbiased sample of the noise whatever
+** the spacing. The window is the first, in this order, whose fit of the other samples
+** is as good as the noise allows (its residual per degree of freedom at most about the
+** 95% point of chi^2, against a pilot scale from the centred windows): a cubic on 9
+** samples centred on the point, a quartic on 7, a parabola on 5 (a sparse contour that
+** bends fast, which the longer ones cannot follow), a cubic on the 8 samples before
+** or after the point (a point next to a corner); failing all, the best fitting one.
+** The point itself takes no part in the choice, so the choice does not favour small
+** errors. The scale is the 40% quantile of the errors' magnitudes divided by that of
+** the noise distribution (half-normal in 2D: 0.5244; chi with 2 degrees of freedom in
+** 3D: 1.0108), refined by the mean square of the errors below 2.5 (3D: 3) times it,
+** corrected for the cut: corners and outliers, which inflate the upper errors, do not
+** bias it, and it is about as precise as a plain RMS.
+**
+** Limits: on a contour sampled so sparsely that a bend of radius R holds fewer than
+** about 3 samples (e.g. 5-lobed stars with 100-150 samples), the fits cannot follow
+** the bends and the estimate is high by 10-30% at noise 1e-4 of the size (less at
+** larger noise).
 **
 ** @param[in]  pts    m points, dim doubles each (dim 2 or 3).
 ** @param[in]  closed non-zero: the windows wrap around.
@@ -40,15 +52,12 @@ typedef struct bsfit_corner_opts {
 
 /** A corner found by bsfit_corners_detect. */
 typedef struct bsfit_corner {
-  size_t index;      /**< the sample nearest to the corner */
+  size_t index;      /**< the sample nearest to the corner (position rounded) */
   double angle;      /**< the turn between the two sides, degrees */
   double position;   /**< where the corner lies along the samples: a fractional index j + f
                           (f in [0, 1)) between samples j and j+1, f the share of the path
-                          Q_j -> point -> Q_{j+1} before the corner point; in [0, m).
-                          Only when both sides are straight to within 2 sigma (else the
-                          side lines miss the true corner) and the polygon turns less than
-                          90% of the corner's turn at `index`: otherwise `index` itself. */
-  double point[3];   /**< the corner itself: where the side lines meet (dim coordinates) */
+                          Q_j -> point -> Q_{j+1} before the corner point; in [0, m) */
+  double point[3];   /**< the corner itself: where the sides meet (dim coordinates) */
 } bsfit_corner;
 
 /** Finds sharp corners: points where the contour turns much more than along its sides.
@@ -56,26 +65,48 @@ typedef struct bsfit_corner {
 ** For each point k, the points before and after it are collected until they are `scale`
 ** away from Q_k (Euclidean distance, so the window does not depend on the density of
 ** the points nor on noise inflating the chord length); a line is fitted to each side
-** (total least squares). Q_k is a corner candidate when
+** (total least squares). Only the points where a quick version of the first two tests
+** passes and whose turn is the largest within a quarter of their window (and their
+** neighbours) are examined. Q_k is a corner when
 **   - the turn between the two side lines is at least min_angle_deg and at least six
 **     times its standard error given sigma;
 **   - both sides are straight: their RMS distance to their line is at most 2.5 sigma
 **     plus 2% of the scale (a curve that turns steadily is not a corner);
-**   - the two lines explain the window much better than a parabola in the frame of the
-**     window's chord: the parabola's residual sum of squares exceeds the lines' by 25
-**     sigma^2 and is at least twice theirs (a tight smooth bend follows a parabola);
-**   - the turn measured with half the scale is at least 75% of it (a corner turns as
-**     much at any scale, a bend in proportion to the scale);
 **   - the lines of the two sides' outer halves (from scale/2 on: the tangents of a
 **     rounded bend, where the whole sides would give secants) meet near the data: within
-**     3 sigma + half the local spacing + 2% of the scale of Q_k (a rounded fillet's
-**     tangent lines meet far from the arc).
-** Of neighbouring candidates, the one nearest to where its side lines meet is kept. The automatic scale is
-** max(40 sigma, 4 median spacings), capped at a tenth of the bounding-box diagonal.
+**     three standard errors of their meeting point (as the lines are known from noisy
+**     samples), plus how far curved sides bend away from their lines, plus 0.5% of the
+**     scale, of the polygon edges at Q_k (less what an edge across a corner cuts off
+**     it). A rounded fillet's tangent lines meet far from the arc;
+**   - the polygon turns at the corner's samples, not at the two beyond them on each
+**     side (by three standard errors plus a fifth of the turn): a tight smooth bend that
+**     sparse samples show as a few large turns is not a corner;
+**   - the turn is a slope jump: with each side grown (by steps, up to 4 times the
+**     scale) as long as it stays straight to the noise, two parabolas meeting anywhere
+**     (a corner with curved sides) explain the sides better by at least 25 sigma^2 (or
+**     25 times their own misfit per point, on clean data) than one cubic whose third
+**     derivative may jump at the corner, in the frame of the two side directions: the
+**     curvature of that cubic can peak at the corner and fall off along both sides, as
+**     the curvature of a tight smooth bend does, but its slope cannot jump;
+**   - the turn measured with half the scale is at least 75% of it (a corner turns as
+**     much at any scale, a bend in proportion to the scale).
+** Of neighbouring candidates, the one nearest to where its sides meet is kept. The
+** corner point is where the sides' parabolas meet (for a turn above 120 degrees, a
+** spike, no further out along its axis than the furthest sample). Its position along
+** the samples is the split of the samples between the two side lines that fits them
+** best (of the splits within 4 sigma^2 of the best, the middle one); for a spike, the
+** mean index of the samples within 2 sigma of the furthest out along its axis. The
+** automatic scale is max(40 sigma, 4 median spacings), capped at a tenth of the
+** bounding-box diagonal.
 **
 ** Limits: with noise sigma, a smooth bend whose radius of curvature is below about 20
-** sigma is not told apart from a corner; pass a smaller `scale` to resolve finer detail.
-** Cost: O(m * w), w the number of points within `scale` of a point.
+** sigma is not told apart from a corner (a 5-lobed star with valleys of radius 4-14
+** sigma, or an airfoil's leading edge of radius 1.6 sigma, may get corners there); a
+** right-angled corner with fewer than about 10 samples on its shorter side at noise
+** 1% of the size may be missed (its slope jump then explains the data by about 20
+** sigma^2, as much as a smooth bend's can). Pass a smaller `scale` to resolve finer
+** detail. Cost: O(m) for the quick test, O(w) per examined point, w the points within
+** 4 scales of it.
 **
 ** @param[out] corners the corners in increasing `index`; at most `cap` are written. A
 **                     corner between two samples keeps its true place in `position` and

@@ -68,6 +68,30 @@ static void test_noise_errors(void **state) {
   assert_true(strlen(st.msg) > 0);
 }
 
+/* sparse polygons with many corners: a third of the windows straddle one (the L at
+** noise 3e-3, nine samples on its short sides, may still read 30% high) */
+static void test_noise_sparse_polygons(void **state) {
+  static double xy[2 * NMAX];
+  const double ell[] = {0, 0, 1, 0, 1, 0.3, 0.3, 0.3, 0.3, 1, 0, 1};
+  const double sigmas[] = {1e-4, 1e-3, 3e-3};
+  double star[24];
+  test_rng r = {41};
+  int i, k, seed;
+  (void)state;
+  for (k = 0; k < 12; k++) { /* a 6-pointed star polygon, radii 1 and 0.6 */
+    double rad = k % 2 == 0 ? 1.0 : 0.6;
+    star[2 * k] = rad * cos(SHAPE_PI * k / 6.0);
+    star[2 * k + 1] = rad * sin(SHAPE_PI * k / 6.0);
+  }
+  for (i = 0; i < 3; i++)
+    for (seed = 0; seed < 3; seed++) {
+      make_polygon(&r, ell, 6, 150, sigmas[i], xy);
+      if (i < 2) check_sigma(xy, 150, 1, sigmas[i]);
+      make_polygon(&r, star, 12, 250, sigmas[i], xy);
+      check_sigma(xy, 250, 1, sigmas[i]);
+    }
+}
+
 static size_t detect(const double *xy, size_t m, int closed, size_t *idx, size_t cap) {
   bsfit_corner_opts o;
   bsfit_corner found[64];
@@ -157,6 +181,74 @@ static void test_corners_of_d_shape_and_airfoil(void **state) {
   }
 }
 
+/* corners with few samples per side, and on curved sides: all found, at their place */
+static void test_corners_sparse_and_curved(void **state) {
+  static double xy[2 * NMAX];
+  const double square[] = {0, 0, 1, 0, 1, 1, 0, 1};
+  const double ell[] = {0, 0, 1, 0, 1, 0.3, 0.3, 0.3, 0.3, 1, 0, 1};
+  const double dcorners[] = {-1, 0, 1, 0};
+  const double sigmas[] = {1e-4, 1e-3, 3e-3};
+  test_rng r = {17};
+  int i, seed;
+  (void)state;
+  for (i = 0; i < 3; i++)
+    for (seed = 0; seed < 3; seed++) {
+      make_polygon(&r, square, 4, 300, sigmas[i], xy);
+      check_corners(xy, 300, square, 4, 0.02);
+      make_polygon(&r, ell, 6, 400, sigmas[i], xy);
+      check_corners(xy, 400, ell, 6, 0.02);
+      make_dshape(&r, 400, 2.0 * sigmas[i], xy);
+      check_corners(xy, 400, dcorners, 2, 0.03);
+    }
+}
+
+/* the corner point where a line meets an arc is where they meet, not where the arc's
+** secant would meet the line (that is 0.009 off for a half disc sampled at 150) */
+static void test_corner_point_on_curved_side(void **state) {
+  static double xy[2 * NMAX];
+  const double sigmas[] = {0.0, 1e-4};
+  test_rng r = {23};
+  int i, k;
+  (void)state;
+  for (i = 0; i < 2; i++) {
+    bsfit_corner_opts o;
+    bsfit_corner found[8];
+    size_t count;
+    bsfit_status st;
+    make_dshape(&r, 150, sigmas[i], xy);
+    memset(&o, 0, sizeof o);
+    o.closed = 1;
+    assert_int_equal(bsfit_corners_detect(xy, 150, 2, &o, found, 8, &count, &st), BSFIT_OK);
+    assert_int_equal(count, 2);
+    for (k = 0; k < 2; k++) {
+      double d = fmin(hypot(found[k].point[0] - 1.0, found[k].point[1]),
+                      hypot(found[k].point[0] + 1.0, found[k].point[1]));
+      if (d > 3.0 * sigmas[i] + 1e-3) fail_msg("sigma %g: corner point %.4g from the vertex", sigmas[i], d);
+    }
+  }
+}
+
+/* a 5-lobed star's valleys (radius 0.25) are smooth bends, however sparse the samples
+** (with 150, a valley turns at five samples in a row) */
+static void test_no_corners_on_star_valleys(void **state) {
+  static double xy[2 * NMAX];
+  const double sigmas[] = {1e-4, 1e-3, 3e-3};
+  const size_t sizes[] = {150, 200, 400, 1000};
+  test_rng r = {8};
+  size_t idx[64];
+  int i, j, seed, uneven;
+  (void)state;
+  for (i = 0; i < 3; i++)
+    for (j = 0; j < 4; j++)
+      for (seed = 0; seed < 2; seed++)
+        for (uneven = 0; uneven <= 1; uneven++) {
+          size_t n, m = sizes[j];
+          make_shape(&r, SHAPE_STAR, m, uneven, 2.0 * sigmas[i], xy);
+          n = detect(xy, m, 1, idx, 64);
+          if (n != 0) fail_msg("star m %zu sigma %g uneven %d: %zu false corners", m, sigmas[i], uneven, n);
+        }
+}
+
 static void test_no_corners_on_smooth_shapes(void **state) {
   static double xy[2 * NMAX];
   const double sigmas[] = {0.0, 1e-4, 1e-3, 1e-2};
@@ -198,8 +290,12 @@ int main(void) {
     cmocka_unit_test(test_noise_smooth_closed_shapes),
     cmocka_unit_test(test_noise_open_arc),
     cmocka_unit_test(test_noise_errors),
+    cmocka_unit_test(test_noise_sparse_polygons),
     cmocka_unit_test(test_corners_of_polygons),
     cmocka_unit_test(test_corners_of_d_shape_and_airfoil),
+    cmocka_unit_test(test_corners_sparse_and_curved),
+    cmocka_unit_test(test_corner_point_on_curved_side),
+    cmocka_unit_test(test_no_corners_on_star_valleys),
     cmocka_unit_test(test_no_corners_on_smooth_shapes),
     cmocka_unit_test(test_dense_clusters_are_not_corners),
   };

@@ -98,6 +98,87 @@ T.test("corners: square and L (vertices on and between samples), D shape, airfoi
   end
 end)
 
+-- Seeds as the accuracy sweep drew them (7919 seed + m): each case below failed on at
+-- least one of its seeds before the corners and parameters were made noise-aware.
+local function sweep_noise(pts, sigma, seed, m) return synth.noisy(pts, sigma, 7919 * seed + m) end
+
+T.test("corners with few samples per side or a curved side: found, Hausdorff < 3 sigma + 1e-3", function()
+  local cases = {
+    -- the L's short sides hold 11 samples; a D's corner joins a line to an arc
+    { name = "L", size = 1, corners = 6, m = 150, sigma = 1e-3, truth = polygons.L,
+      make = function(m) return synth.sample_polygon(polygons.L, m) end },
+    { name = "square", size = 1, corners = 4, m = 400, sigma = 1e-3, truth = polygons.square,
+      make = function(m) return synth.sample_polygon(polygons.square, m) end },
+    { name = "D", size = 2, corners = 2, m = 150, sigma = 3e-3, make = synth.d_shape },
+    { name = "D", size = 2, corners = 2, m = 400, sigma = 1e-3, make = synth.d_shape },
+  }
+  for _, c in ipairs(cases) do
+    local truth = c.truth or c.make(1000)
+    for seed = 1, 3 do
+      local P = sweep_noise(c.make(c.m), c.sigma * c.size, seed, c.m)
+      local C, rep = auto.run(P)
+      local h = synth.hausdorff(C, truth, 800)
+      local lim = 3 * c.sigma * c.size + 1e-3 * c.size
+      local what = ("%s m %d sigma %g seed %d"):format(c.name, c.m, c.sigma, seed)
+      T.eq(#rep.corners, c.corners, what .. ": corners")
+      T.ok(h < lim, ("%s: Hausdorff %g >= %g"):format(what, h, lim))
+      T.ok(not synth.self_intersects(C, 600), what .. ": self-intersection")
+    end
+  end
+end)
+
+T.test("no false corners where smooth bends look like corners (noise 0.3%, sparse uneven samples)", function()
+  local f = synth.smooth.star
+  for seed = 1, 3 do
+    -- noise 0.3% of the size: a valley of radius 0.25 is 40 sigma, the window's scale
+    local P = sweep_noise(synth.sample_smooth(f, 400, false), 3e-3 * 2, seed, 400)
+    local _, rep = auto.run(P)
+    T.eq(#rep.corners, 0, ("star m 400 sigma 3e-3 seed %d: false corners"):format(seed))
+    -- 200 uneven samples: a valley turns at a few samples in a row, noise 1e-4
+    P = sweep_noise(synth.sample_smooth(f, 200, true), 2e-4, seed, 200)
+    _, rep = auto.run(P)
+    T.eq(#rep.corners, 0, ("star m 200 uneven sigma 1e-4 seed %d: false corners"):format(seed))
+  end
+end)
+
+T.test("dense clusters of samples neither loop nor make corners", function()
+  local f = synth.smooth.ellipse
+  local truth = synth.sample_smooth(f, 800, false)
+  for _, sigma in ipairs { 1e-4, 3e-3 } do
+    for seed = 1, 2 do
+      -- 600 samples and 4 bursts of 100 nearly coincident ones
+      local P = sweep_noise(synth.clustered(f, 1000, 4, 0.1), 2 * sigma, seed, 1000)
+      local C, rep = auto.run(P)
+      local what = ("clustered sigma %g seed %d"):format(sigma, seed)
+      T.eq(#rep.corners, 0, what .. ": corners")
+      T.ok(not synth.self_intersects(C, 600), what .. ": self-intersection")
+      local h, lim = synth.hausdorff(C, truth), 3 * 2 * sigma + 2e-3
+      T.ok(h < lim, ("%s: Hausdorff %g >= %g"):format(what, h, lim))
+    end
+  end
+end)
+
+T.test("an airfoil's thin trailing edge does not cross over; noise a few percent low does not overfit", function()
+  local truth = synth.airfoil(1000)
+  for seed = 1, 3 do
+    -- noise 1e-3 of the chord: the last 0.3% of the edge is thinner than the noise
+    local P = sweep_noise(synth.airfoil(400), 1e-3, seed, 400)
+    local C, rep = auto.run(P)
+    local what = ("airfoil m 400 sigma 1e-3 seed %d"):format(seed)
+    T.eq(#rep.corners, 1, what .. ": corners")
+    T.ok(not synth.self_intersects(C, 600), what .. ": self-intersection")
+    T.ok(synth.hausdorff(C, truth, 800) < 4e-3, what .. ": Hausdorff")
+    -- noise 1e-4: the count search stops where more control points buy no more than
+    -- fitting noise does, instead of running to its cap
+    P = sweep_noise(synth.airfoil(400), 1e-4, seed, 400)
+    C, rep = auto.run(P)
+    what = ("airfoil m 400 sigma 1e-4 seed %d"):format(seed)
+    T.ok(rep.count <= 100, what .. ": count " .. rep.count)
+    local h = synth.hausdorff(C, truth, 800)
+    T.ok(h < 1.3e-3, ("%s: Hausdorff %g"):format(what, h))
+  end
+end)
+
 T.test("down-weighted gross outliers are ignored (fit and parameters)", function()
   local f = synth.smooth.ellipse
   local truth = synth.sample_smooth(f, 800, false)
