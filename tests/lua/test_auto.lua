@@ -197,6 +197,11 @@ T.test("down-weighted gross outliers are ignored (fit and parameters)", function
   local Cc = carvalho.run(P, { point_weights = bs.vector.new(w) })
   T.ok(synth.hausdorff(Cc, truth) > h, "carvalho should not beat auto here")
   T.ok(rep.sigma > 0 and rep.sigma < 3e-3, "sigma " .. rep.sigma)
+  -- the report separates the trusted points: their distances stay at the noise level
+  -- while the outliers' (0.6 of the radius away) dominate the plain maximum
+  T.ok(rep.max_trusted and rep.max_trusted < 6e-3, "max over trusted " .. tostring(rep.max_trusted))
+  T.ok(rep.max > 0.3, "max over all points " .. rep.max)
+  T.ok(rep.rms_trusted < rep.rms, "rms over trusted below rms")
 end)
 
 T.test("every step can be switched off or replaced", function()
