@@ -292,10 +292,28 @@ static double foot_newton(foot_ctx *F, double u, int iters, double *d2) {
 ** doubles); returns |C(u) - F->P|^2 */
 static double sample_at(foot_ctx *F, double u, double *D) { return foot_eval(F, u, D, 0); }
 
+/* Newton from the best sample v (step h apart from its neighbours). At a knot where the
+** curve may turn (multiplicity >= degree: C0 or less) the derivative seen from one side
+** cannot lead to a foot on the other: there the descent also starts half a sample step
+** to either side, and the nearest of the three feet wins. */
+static double closest_from(foot_ctx *F, double v, double h, double *d2) {
+  const bsfit_curve *c = F->c;
+  double u = foot_newton(F, v, NEWTON_MAX_ITERS, d2);
+  int side;
+  if (bsfit_knots_multiplicity(c->knots, c->n + (size_t)c->degree + 1, v) < c->degree) return u;
+  for (side = -1; side <= 1; side += 2) {
+    double e2, w = v + 0.5 * h * side, x;
+    if (w < F->lo || w > F->hi) continue;
+    x = foot_newton(F, w, NEWTON_MAX_ITERS, &e2);
+    if (e2 < *d2) *d2 = e2, u = x;
+  }
+  return u;
+}
+
 bsfit_err bsfit_curve_closest(const bsfit_curve *c, const double *P, double *u, double *dist,
                               bsfit_status *st) {
   foot_ctx F;
-  double a, b, D[3 * 4], best = INFINITY, ubest = 0.0, d2;
+  double a, b, D[3 * 4], best = INFINITY, ubest = 0.0, hbest = 0.0, d2;
   size_t s, i, p;
   bsfit_err e = bsfit_curve_validate(c, st);
   if (e != BSFIT_OK) return e;
@@ -316,6 +334,7 @@ bsfit_err bsfit_curve_closest(const bsfit_curve *c, const double *P, double *u, 
       if (dv < best) {
         best = dv;
         ubest = v;
+        hbest = h;
         F.lo = v - h;
         F.hi = v + h;
       }
@@ -325,7 +344,7 @@ bsfit_err bsfit_curve_closest(const bsfit_curve *c, const double *P, double *u, 
     F.lo = fmax(F.lo, a);
     F.hi = fmin(F.hi, b);
   }
-  ubest = foot_newton(&F, ubest, NEWTON_MAX_ITERS, &d2);
+  ubest = closest_from(&F, ubest, hbest, &d2);
   *u = bsfit__curve_wrap(c, ubest);
   if (dist) *dist = sqrt(d2);
   return bsfit__ok(st);
@@ -380,7 +399,7 @@ bsfit_err bsfit_curve_closest_many(const bsfit_curve *c, const double *pts, size
     F.P = P;
     F.lo = c->periodic ? par[kb] - step[kb] : fmax(par[kb] - step[kb], a);
     F.hi = c->periodic ? par[kb] + step[kb] : fmin(par[kb] + step[kb], b);
-    u[i] = bsfit__curve_wrap(c, foot_newton(&F, par[kb], NEWTON_MAX_ITERS, &d2));
+    u[i] = bsfit__curve_wrap(c, closest_from(&F, par[kb], step[kb], &d2));
     if (dist) dist[i] = sqrt(d2);
   }
   poly_free(poly, pbytes);

@@ -619,6 +619,30 @@ static void test_project_many_batch_finds_feet(void **state) {
   }
 }
 
+static void test_closest_beside_a_corner(void **state) {
+  /* given a cubic with a triple knot that is exactly an L (corner at (0,0), u = 0.5),
+  ** when points lie on one leg near the corner (the corner is their nearest sample and
+  ** the one-sided derivative there points along the other leg), then the closest point
+  ** is still found on their own leg: distance to the leg, not to the corner */
+  double U[] = {0, 0, 0, 0, 0.5, 0.5, 0.5, 1, 1, 1, 1};
+  double P[] = {0, 1, 0, 2.0 / 3, 0, 1.0 / 3, 0, 0, 1.0 / 3, 0, 2.0 / 3, 0, 1, 0};
+  double Q[] = {1e-4, 0.03, 0.03, -2e-4, -5e-4, 0.05, 0.06, 3e-4};
+  double want[] = {1e-4, 2e-4, 5e-4, 3e-4}, u[4], d[4];
+  bsfit_curve c;
+  size_t i;
+  (void)state;
+  bsfit_curve_init(&c);
+  assert_int_equal(bsfit_curve_new(&c, 3, 2, 7, U, P, NULL, 0, NULL, NULL), BSFIT_OK);
+  for (i = 0; i < 4; i++) {
+    double ui, di;
+    assert_int_equal(bsfit_curve_closest(&c, Q + 2 * i, &ui, &di, NULL), BSFIT_OK);
+    assert_float_equal(di, want[i], 1e-12);
+  }
+  assert_int_equal(bsfit_curve_closest_many(&c, Q, 4, u, d, NULL), BSFIT_OK);
+  for (i = 0; i < 4; i++) assert_float_equal(d[i], want[i], 1e-12);
+  bsfit_curve_free(&c);
+}
+
 static void test_closest_many_equals_closest(void **state) {
   /* given random curves of every kind and points scattered around them, when the
   ** closest points are found one by one and all at once, then they agree */
@@ -660,6 +684,7 @@ int main(void) {
       cmocka_unit_test(test_periodic_seam_kept_by_operations),
       cmocka_unit_test(test_invalid_inputs),
       cmocka_unit_test(test_closest_many_equals_closest),
+      cmocka_unit_test(test_closest_beside_a_corner),
       cmocka_unit_test(test_project_many_batch_finds_feet),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
