@@ -682,19 +682,8 @@ function steps.measure(P, ctx)
     d = select(2, ctx.curve:project(P, ctx.params_final or ctx.params, NEWTON))
   end
   local max, imax = d:max()
-  local r = { residuals = d:totable(), rms = d:rms(), max = max or 0, max_index = imax or 1 }
-  local t = common.trusted(ctx) -- as every strategy reports: the points the file trusts
-  if t ~= nil then
-    local isout, sum, tmax, ti, dt = t.isout, 0, -1, 1, r.residuals
-    for i = 1, #dt do
-      if not isout[i] then
-        sum = sum + dt[i] * dt[i]
-        if dt[i] > tmax then tmax, ti = dt[i], i end
-      end
-    end
-    r.max_trusted, r.max_trusted_index, r.rms_trusted = tmax, ti, math.sqrt(sum / t.n)
-  end
-  return r
+  return common.add_trusted(ctx, { residuals = d:totable(), rms = d:rms(), max = max or 0,
+                                   max_index = imax or 1 })
 end
 
 -- }======================================================================

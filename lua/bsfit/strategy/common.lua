@@ -488,24 +488,28 @@ function M.report(ctx)
   return rep
 end
 
--- The measure step: deviations of the original points from ctx.curve. With
--- untrusted points (M.trusted), also max_trusted, rms_trusted and max_trusted_index:
--- the same over the trusted points only (what the fit was asked to follow).
+-- Adds max_trusted, rms_trusted and max_trusted_index to the measure r (its residuals
+-- a Lua array) when some points are untrusted (M.trusted): the same over the trusted
+-- points only, what the fit was asked to follow. Returns r.
+function M.add_trusted(ctx, r)
+  local t = M.trusted(ctx)
+  if t == nil then return r end
+  local d, isout, sum, tmax, ti = r.residuals, t.isout, 0, -1, 1
+  for i = 1, #d do
+    if not isout[i] then
+      sum = sum + d[i] * d[i]
+      if d[i] > tmax then tmax, ti = d[i], i end
+    end
+  end
+  r.max_trusted, r.max_trusted_index, r.rms_trusted = tmax, ti, math.sqrt(sum / t.n)
+  return r
+end
+
+-- The measure step: deviations of the original points from ctx.curve (and over the
+-- trusted points, M.add_trusted).
 function M.measure(P, ctx)
   local d, rms, max, imax = M.deviations(ctx.curve, P)
-  local r = { residuals = d, rms = rms, max = max, max_index = imax }
-  local t = M.trusted(ctx)
-  if t ~= nil then
-    local isout, sum, tmax, ti = t.isout, 0, -1, 1
-    for i = 1, #d do
-      if not isout[i] then
-        sum = sum + d[i] * d[i]
-        if d[i] > tmax then tmax, ti = d[i], i end
-      end
-    end
-    r.max_trusted, r.max_trusted_index, r.rms_trusted = tmax, ti, math.sqrt(sum / t.n)
-  end
-  return r
+  return M.add_trusted(ctx, { residuals = d, rms = rms, max = max, max_index = imax })
 end
 
 -- }======================================================================
