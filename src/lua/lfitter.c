@@ -200,21 +200,30 @@ static void push_report(lua_State *L, const bsfit_fit_report *rep, int resid) {
   lua_setfield(L, -2, "residuals");
 }
 
-/* F:fit(P [, u [, w]]) --> Curve, report | nil, message, code.
+/* F:fit(P [, u [, w [, r]]]) --> Curve, report | nil, message, code.
 ** P: Points or table; u: parameters (Vector or table; default chord-length, closed
-** for a periodic fitter); w: per-point weights (Vector or table, default 1). */
+** for a periodic fitter); w: per-point weights (Vector or table, default 1); r: a
+** Vector of #P that receives the residuals (report.residuals is then r), so a loop of
+** big fits reuses its memory instead of a fresh Vector per call. */
 static int fitter_fit(lua_State *L) {
   fitter_ud *F = checkfitter(L, 1);
   bsfit_points_ud *P = bsfit__lua_topoints(L, 2);
-  bsfit_vector_ud *u = NULL, *w = NULL, *res;
+  bsfit_vector_ud *u = NULL, *w = NULL, *res = NULL;
   bsfit_fit_report rep;
   bsfit_allocator a;
   bsfit_curve_ud *C;
   bsfit_status st;
   bsfit_err e;
-  lua_settop(L, 4);
+  lua_settop(L, 5);
   if (!lua_isnil(L, 3)) u = bsfit__lua_tovector(L, 3);
   if (!lua_isnil(L, 4)) w = bsfit__lua_tovector(L, 4);
+  if (!lua_isnil(L, 5)) {
+    res = bsfit__lua_checkvector(L, 5);
+    if (res->n != P->n)
+      return luaL_argerror(L, 5, lua_pushfstring(L, "%d residual slots for %d points", (int)res->n, (int)P->n));
+    if (res == u || res == w)
+      return luaL_argerror(L, 5, "the residuals Vector must not be the parameters or the weights");
+  }
   if (u && u->n != P->n)
     return luaL_argerror(L, 3, lua_pushfstring(L, "%d parameters for %d points", (int)u->n, (int)P->n));
   if (w && w->n != P->n)
@@ -228,8 +237,11 @@ static int fitter_fit(lua_State *L) {
       return bsfit__lua_result(L, e, &st, 0, 2);
     }
   }
-  res = bsfit__lua_allocvector(L, P->n); /* slot 5, every value written by the fit */
-  C = bsfit__lua_newcurve(L, &a);       /* slot 6 */
+  if (lua_isnil(L, 5)) {
+    res = bsfit__lua_allocvector(L, P->n); /* every value is written by the fit */
+    lua_replace(L, 5);
+  }
+  C = bsfit__lua_newcurve(L, &a); /* slot 6 */
   e = bsfit_fitter_fit(F->f, P->xy, P->n, (int)P->dim, u->x, w ? w->x : NULL, &C->c, &rep,
                        res->x, &st);
   if (e != BSFIT_OK) {

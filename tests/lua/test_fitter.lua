@@ -149,6 +149,24 @@ T.test("least squares: weighted residuals are orthogonal to each basis function"
   end
 end)
 
+T.test("F:fit writes the residuals into a caller's Vector when given one", function()
+  local m = 40
+  local P = bs.points.new(m, 2)
+  for k = 1, m do local a = 2 * math.pi * k / m; P:set(k, math.cos(a) + 0.01 * math.sin(7 * k), math.sin(a)) end
+  local u = bs.params(P, "chord")
+  local F = bs.fitter{degree = 3, count = 8}
+  local _, fresh = F:fit(P, u)
+  local r = bs.vector.new(m, -1)
+  local _, rep = F:fit(P, u, nil, r)
+  T.ok(rawequal(rep.residuals, r), "report.residuals is the caller's Vector")
+  for k = 1, m do T.eq(r:get(k), fresh.residuals:get(k), "residual " .. k) end
+  T.raises("bad argument #4 to 'fit' (39 residual slots for 40 points)",
+           function() F:fit(P, u, nil, bs.vector.new(m - 1)) end)
+  T.raises("bad argument #4 to 'fit' (the residuals Vector must not be the parameters or the weights)",
+           function() F:fit(P, u, nil, u) end)
+  T.raises({ match = "bad argument #4 to 'fit' %(bsfit.Vector expected" }, function() F:fit(P, u, nil, {}) end)
+end)
+
 T.test("a knot span without data gives nil, message, 'EEMPTYSPAN'", function()
   local K = bs.knots.clamped{degree = 3, count = 8}
   local F = bs.fitter{degree = 3, knots = K}
