@@ -23,13 +23,10 @@ bsfit_err bsfit__lapack_status(int info, const char *routine, int spd, bsfit_sta
 bsfit_err bsfit__pb_factor(size_t n, int kd, double *ab, size_t ldab, bsfit_status *st);
 bsfit_err bsfit__pb_solve(size_t n, int kd, const double *ab, size_t ldab, size_t nrhs,
                           double *b, size_t ldb, bsfit_status *st);
-/* Reciprocal 1-norm condition estimate of the factored band given the original 1-norm
-** (dlacn2 + band substitutions, O(n kd) per step); work: 3n doubles, iwork: n ints.
-** 0 on failure. */
-double bsfit__pb_rcond(size_t n, int kd, const double *ab, size_t ldab, double anorm,
-                       double *work, int *iwork);
-/* The same for a totally nonnegative band (work: 2n doubles), exact in one solve. An open
-** fit's normal matrix A = sum_k w_k N(u_k) N(u_k)^T is one: the sum does not depend on the
+/* Reciprocal 1-norm condition number of a factored totally nonnegative band, given its
+** 1-norm: exact, in one solve (work: n doubles); for other matrices an upper bound
+** (|A^-1|_1 from below). 0 on failure. An open fit's normal matrix
+** A = sum_k w_k N(u_k) N(u_k)^T is totally nonnegative: the sum does not depend on the
 ** order of the points, B-spline collocation matrices at sorted parameters are totally
 ** nonnegative (de Boor), and so are products of such matrices (Cauchy-Binet) and their
 ** principal submatrices (fixed ends eliminated). Periodic normal matrices are not. */

@@ -54,87 +54,20 @@ bsfit_err bsfit__pb_solve(size_t n, int kd, const double *ab, size_t ldab, size_
                               "dpbtrs", 1, st);
 }
 
-/* x <- (L L^T)^-1 x with the band factor of dpbtrf (lower storage). The estimator below
-** needs about five such products in sequence; through dpbtrs each costs two level-2 BLAS
-** calls whose fixed overhead (OpenBLAS: buffer locking) outweighs the O(n kd) work on
-** the bands of a fit (kd = p <= 3), so the condition estimate used to cost more than the
-** fit itself. The solution of the fit goes through dpbtrs. */
-static void band_chol_solve(size_t n, int kd, const double *ab, size_t ldab, const double *dinv,
-                            double *x) {
-  size_t j, i, k = (size_t)kd;
-  if (kd == 3 && n >= 3) { /* cubic fits: the last three unknowns stay in registers */
-    double y1 = 0.0, y2 = 0.0, y3 = 0.0; /* y_{j-1}, y_{j-2}, y_{j-3} */
-    for (j = 0; j < n; j++) { /* L y = x, by rows */
-      double v = x[j];
-      if (j >= 3) v -= ab[3 + (j - 3) * ldab] * y3;
-      if (j >= 2) v -= ab[2 + (j - 2) * ldab] * y2;
-      if (j >= 1) v -= ab[1 + (j - 1) * ldab] * y1;
-      y3 = y2, y2 = y1, y1 = v * dinv[j];
-      x[j] = y1;
-    }
-    y1 = y2 = y3 = 0.0; /* now x_{j+1}, x_{j+2}, x_{j+3} */
-    for (j = n; j-- > 0;) { /* L^T x = y */
-      const double *col = ab + j * ldab;
-      double v = x[j];
-      if (j + 3 < n) v -= col[3] * y3; /* slots past the matrix are not LAPACK's to clear */
-      if (j + 2 < n) v -= col[2] * y2;
-      if (j + 1 < n) v -= col[1] * y1;
-      y3 = y2, y2 = y1, y1 = v * dinv[j];
-      x[j] = y1;
-    }
-    return;
-  }
-  for (j = 0; j < n; j++) { /* L y = x, by rows: the chain is one product per row */
-    double v = x[j];
-    for (i = k; i >= 1; i--)
-      if (i <= j) v -= ab[i + (j - i) * ldab] * x[j - i];
-    x[j] = v * dinv[j];
-  }
-  for (j = n; j-- > 0;) { /* L^T x = y */
-    const double *col = ab + j * ldab;
-    double v = x[j];
-    for (i = k; i >= 1; i--)
-      if (j + i < n) v -= col[i] * x[j + i];
-    x[j] = v * dinv[j];
-  }
-}
-
-/* Hager-Higham estimate of |A^-1|_1 (LAPACK's dlacn2 reverse communication) with the band
-** factor's solves. dpbcon would do the same through dlatbs, whose overflow-careful path
-** scans the whole solution at every column: O(n^2) on long bands. A is symmetric, so
-** A^-T x = A^-1 x and both requests are one solve. */
-double bsfit__pb_rcond(size_t n, int kd, const double *ab, size_t ldab, double anorm,
-                       double *work, int *iwork) {
-  double est = 0.0, *v = work, *x = work + n, *dinv = work + 2 * n;
-  lapack_int kase = 0, isave[3] = {0, 0, 0};
-  size_t j;
-  if (!fits_int(n, ldab, 0) || n == 0 || !(anorm > 0.0)) return 0.0;
-  for (j = 0; j < n; j++) dinv[j] = 1.0 / ab[j * ldab]; /* off the substitutions' chain */
-  for (;;) {
-    LAPACKE_dlacn2_work((lapack_int)n, v, x, (lapack_int *)iwork, &est, &kase, isave);
-    if (kase == 0) break;
-    band_chol_solve(n, kd, ab, ldab, dinv, x);
-  }
-  return est > 0.0 && isfinite(est) ? 1.0 / (est * anorm) : 0.0;
-}
-
 /* For a totally nonnegative A (an open fit's normal matrix: see fit_internal.h) the
 ** inverse has the checkerboard sign pattern, (-1)^(i+j) (A^-1)_ij >= 0, so column j of
 ** |A^-1| sums to |(A^-1 s)_j| with s_i = (-1)^i: |A^-1|_1 = |A^-1 s|_inf, one solve and
-** exact. For any other matrix the same value is a lower bound of |A^-1|_1, as the
-** Hager-Higham estimate is. */
+** exact. For any other matrix the same value is a lower bound of |A^-1|_1 (what
+** LAPACK's estimators give too). */
 double bsfit__pb_rcond_tn(size_t n, int kd, const double *ab, size_t ldab, double anorm,
                           double *work) {
-  double *x = work, *dinv = work + n, est = 0.0;
+  double est = 0.0;
   size_t j;
   if (n == 0 || !(anorm > 0.0)) return 0.0;
-  for (j = 0; j < n; j++) {
-    dinv[j] = 1.0 / ab[j * ldab];
-    x[j] = j % 2 ? -1.0 : 1.0;
-  }
-  band_chol_solve(n, kd, ab, ldab, dinv, x);
+  for (j = 0; j < n; j++) work[j] = j % 2 ? -1.0 : 1.0;
+  if (bsfit__pb_solve(n, kd, ab, ldab, 1, work, n, NULL) != BSFIT_OK) return 0.0;
   for (j = 0; j < n; j++)
-    if (fabs(x[j]) > est) est = fabs(x[j]);
+    if (fabs(work[j]) > est) est = fabs(work[j]);
   return est > 0.0 && isfinite(est) ? 1.0 / (est * anorm) : 0.0;
 }
 
