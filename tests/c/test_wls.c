@@ -617,6 +617,52 @@ static void test_empty_span_is_reported(void **state) {
   bsfit_fitter_free(f);
 }
 
+static void test_reused_fitter_matches_fresh(void **state) {
+  /* given one fitter refitting with parameters whose knots differ, the same again, and
+  ** parameters it rejects in between, when each fit is compared with a fresh fitter's,
+  ** then they are identical: the per-span data kept while the knots do not move is
+  ** never stale (open and periodic) */
+  test_rng r = {4711};
+  size_t m = 100, k;
+  double pts[200], u[3][100], w[100], bad[100];
+  int periodic, i;
+  (void)state;
+  noisy_curve(&r, m, pts, u[0], w);
+  for (periodic = 0; periodic <= 1; periodic++) {
+    bsfit_fit_opts o;
+    bsfit_fitter *f;
+    bsfit_curve out;
+    bsfit_param_kind kinds[3] = {BSFIT_PARAM_CHORD, BSFIT_PARAM_CENTRIPETAL, BSFIT_PARAM_CHORD};
+    int order[5] = {0, 1, 1, 2, 0};
+    for (i = 0; i < 3; i++)
+      assert_int_equal(bsfit_params(pts, m, 2, kinds[i], periodic, u[i], NULL), BSFIT_OK);
+    memcpy(bad, u[0], sizeof bad);
+    bad[50] = bad[10]; /* decreasing: the knot placement rejects it */
+    bsfit_fit_opts_init(&o);
+    o.count = 12;
+    o.periodic = periodic;
+    bsfit_curve_init(&out);
+    assert_int_equal(bsfit_fitter_new(&f, &o, NULL, NULL), BSFIT_OK);
+    for (i = 0; i < 5; i++) {
+      bsfit_fitter *g;
+      bsfit_curve ref;
+      const double *uu = u[order[i]];
+      if (i == 3)
+        assert_int_not_equal(bsfit_fitter_fit(f, pts, m, 2, bad, w, &out, NULL, NULL, NULL), BSFIT_OK);
+      assert_int_equal(bsfit_fitter_fit(f, pts, m, 2, uu, w, &out, NULL, NULL, NULL), BSFIT_OK);
+      bsfit_curve_init(&ref);
+      assert_int_equal(bsfit_fitter_new(&g, &o, NULL, NULL), BSFIT_OK);
+      assert_int_equal(bsfit_fitter_fit(g, pts, m, 2, uu, w, &ref, NULL, NULL, NULL), BSFIT_OK);
+      assert_int_equal(out.n, ref.n);
+      for (k = 0; k < ref.n * 2; k++) assert_float_equal(out.ctrl[k], ref.ctrl[k], 0.0);
+      bsfit_curve_free(&ref);
+      bsfit_fitter_free(g);
+    }
+    bsfit_curve_free(&out);
+    bsfit_fitter_free(f);
+  }
+}
+
 static void test_reconfigure_and_reuse(void **state) {
   test_rng r = {61};
   size_t m = 100, before;
@@ -745,6 +791,7 @@ int main(void) {
     cmocka_unit_test(test_invalid_inputs),
     cmocka_unit_test(test_empty_span_is_reported),
     cmocka_unit_test(test_reconfigure_and_reuse),
+    cmocka_unit_test(test_reused_fitter_matches_fresh),
     cmocka_unit_test(test_allocation_failures),
     cmocka_unit_test(test_interpolation_open),
   };
