@@ -349,29 +349,9 @@ static int turn_concentrated(const contour *c, double position, const side *left
 }
 
 /* Cholesky solve of the n x n SPD system A x = b (n <= 5) in place; 0 if singular */
-static int solve_spd(int n, double A[5][5], double *b) {
-  int i, j, k;
-  double tr = 0;
-  for (i = 0; i < n; i++) tr += A[i][i];
-  for (j = 0; j < n; j++) {
-    double dd = A[j][j];
-    for (k = 0; k < j; k++) dd -= A[j][k] * A[j][k];
-    if (!(dd > 1e-13 * tr)) return 0;
-    A[j][j] = sqrt(dd);
-    for (i = j + 1; i < n; i++) {
-      double s = A[i][j];
-      for (k = 0; k < j; k++) s -= A[i][k] * A[j][k];
-      A[i][j] = s / A[j][j];
-    }
-  }
-  for (i = 0; i < n; i++) {
-    for (k = 0; k < i; k++) b[i] -= A[i][k] * b[k];
-    b[i] /= A[i][i];
-  }
-  for (i = n - 1; i >= 0; i--) {
-    for (k = i + 1; k < n; k++) b[i] -= A[k][i] * b[k];
-    b[i] /= A[i][i];
-  }
+static int solve_spd(int n, double A[BSFIT__SMALL][BSFIT__SMALL], double *b) {
+  if (!bsfit__small_cholesky(n, A)) return 0;
+  bsfit__small_chol_solve(n, (const double(*)[BSFIT__SMALL])A, b);
   return 1;
 }
 

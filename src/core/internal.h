@@ -41,4 +41,11 @@ void bsfit__curve_eval_unchecked(const bsfit_curve *c, double u, double *out);
 /* noise.c: k-th smallest of x[0..n-1], reordering x (selection, O(n) expected) */
 double bsfit__select(double *x, size_t n, size_t k);
 
+/* small_spd.c: tiny dense SPD systems (n <= BSFIT__SMALL), lower Cholesky in place.
+** bsfit__small_cholesky returns 0 when A is not numerically SPD (a pivot below 1e-13
+** of the trace). */
+#define BSFIT__SMALL 5
+int bsfit__small_cholesky(int n, double A[BSFIT__SMALL][BSFIT__SMALL]);
+void bsfit__small_chol_solve(int n, const double L[BSFIT__SMALL][BSFIT__SMALL], double *b);
+
 #endif

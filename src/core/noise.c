@@ -10,7 +10,7 @@
 #include <math.h>
 #include <string.h>
 
-#define NCOEF_MAX 5 /* quartic */
+#define NCOEF_MAX BSFIT__SMALL /* quartic */
 
 /* k-th smallest of x[0..n-1] (Wirth's selection; reorders x so that x[i] <= x[k]
 ** for i < k and x[i] >= x[k] for i > k) */
@@ -34,38 +34,6 @@ double bsfit__select(double *x, size_t n, size_t k) {
     if (kk < i) hi = j;
   }
   return x[kk];
-}
-
-/* Cholesky of the n x n SPD matrix A in place (lower); 0 if not numerically SPD */
-static int cholesky(int n, double A[NCOEF_MAX][NCOEF_MAX]) {
-  int i, j, k;
-  double tr = 0;
-  for (i = 0; i < n; i++) tr += A[i][i];
-  for (j = 0; j < n; j++) {
-    double d = A[j][j];
-    for (k = 0; k < j; k++) d -= A[j][k] * A[j][k];
-    if (!(d > 1e-13 * tr)) return 0;
-    A[j][j] = sqrt(d);
-    for (i = j + 1; i < n; i++) {
-      double s = A[i][j];
-      for (k = 0; k < j; k++) s -= A[i][k] * A[j][k];
-      A[i][j] = s / A[j][j];
-    }
-  }
-  return 1;
-}
-
-/* solves L L^T x = b in place */
-static void chol_solve(int n, double L[NCOEF_MAX][NCOEF_MAX], double *b) {
-  int i, k;
-  for (i = 0; i < n; i++) {
-    for (k = 0; k < i; k++) b[i] -= L[i][k] * b[k];
-    b[i] /= L[i][i];
-  }
-  for (i = n - 1; i >= 0; i--) {
-    for (k = i + 1; k < n; k++) b[i] -= L[k][i] * b[k];
-    b[i] /= L[i][i];
-  }
 }
 
 /* A window of a point k: the samples k + lo .. k + hi (lo <= 0 <= hi), fitted by a
@@ -142,14 +110,14 @@ static int predict(const double *pts, size_t m, int dim, int closed, size_t k,
   }
   for (a = 0; a < ncoef; a++)
     for (b = a + 1; b < ncoef; b++) A[a][b] = A[b][a];
-  if (!cholesky(ncoef, A)) return 0;
-  chol_solve(ncoef, A, x0); /* x0[0] = (A^-1)_00: the prediction's variance factor at s = 0 */
+  if (!bsfit__small_cholesky(ncoef, A)) return 0;
+  bsfit__small_chol_solve(ncoef, (const double(*)[BSFIT__SMALL])A, x0); /* x0[0] = (A^-1)_00: the prediction's variance factor at s = 0 */
   lev = x0[0];
   rss = syy;
   for (d = 0; d < ny; d++) {
     double c[NCOEF_MAX];
     memcpy(c, rhs[d], sizeof c);
-    chol_solve(ncoef, A, c);
+    bsfit__small_chol_solve(ncoef, (const double(*)[BSFIT__SMALL])A, c);
     for (a = 0; a < ncoef; a++) rss -= c[a] * rhs[d][a];
     pred2 += c[0] * c[0]; /* the fit at s = 0 minus the point itself (at the origin) */
   }
