@@ -108,19 +108,25 @@ bsfit_err bsfit_curve_length(const bsfit_curve *c, double a, double b, double *l
 
 /* Where a parameter may go: [lo, hi], clamped for open curves; periodic curves are
 ** evaluated at any u (wrapped) and only the final answer is wrapped. A polynomial cubic
-** projected at many points is first converted to one polynomial per span (`poly`), so
-** an evaluation is a cached span lookup and three Horner sums, not three basis
-** recursions and a binary search. */
+** is evaluated span by span as a polynomial (`polys`: converted on a span's first use),
+** so an evaluation is a cached span lookup and three Horner sums, not three basis
+** recursions and a binary search. Other curves go through the basis derivatives. */
+typedef struct span_polys {
+  double *coef;         /* per span s >= 3: 4 dim coefficients (bsfit__cubic_span_poly) */
+  unsigned char *ready; /* per span: converted yet */
+  size_t bytes;         /* of the block holding both */
+} span_polys;
+
 typedef struct foot_ctx {
   const bsfit_curve *c;
   const double *P;
   double lo, hi;
-  const double *poly; /* per span s >= p: 4 dim coefficients (bsfit__cubic_span_poly) */
-  size_t s;           /* the last span used */
-  double a, b;        /* the domain */
+  span_polys *poly; /* NULL: the basis path */
+  size_t s;         /* the last span used */
+  double a, b;      /* the domain */
 } foot_ctx;
 
-static void foot_init(foot_ctx *F, const bsfit_curve *c, const double *poly) {
+static void foot_init(foot_ctx *F, const bsfit_curve *c, span_polys *poly) {
   F->c = c;
   F->P = NULL;
   F->poly = poly;
@@ -128,37 +134,35 @@ static void foot_init(foot_ctx *F, const bsfit_curve *c, const double *poly) {
   bsfit_curve_domain(c, &F->a, &F->b);
 }
 
-static int poly_form(const bsfit_curve *c) {
-  return c->degree == 3 && c->weights == NULL && !c->bezier;
+/* Room for the span polynomials of a polynomial cubic; NULL when c is not one or out of
+** memory (the basis path then serves). Free with polys_free. */
+static span_polys *polys_new(const bsfit_curve *c, span_polys *sp) {
+  size_t n = c->n, d = (size_t)c->dim;
+  if (c->degree != 3 || c->weights != NULL || c->bezier) return NULL;
+  sp->bytes = n * 4 * d * sizeof(double) + n;
+  sp->coef = bsfit__alloc(NULL, sp->bytes);
+  if (sp->coef == NULL) return NULL;
+  sp->ready = (unsigned char *)(sp->coef + n * 4 * d);
+  memset(sp->ready, 0, n);
+  return sp;
 }
 
-/* The span polynomials of a polynomial cubic (NULL when c is not one, or out of memory:
-** the basis path then serves). Free with poly_free. */
-static double *poly_new(const bsfit_curve *c, size_t *bytes) {
-  size_t s, d = (size_t)c->dim;
-  double *poly;
-  *bytes = 0;
-  if (!poly_form(c)) return NULL;
-  *bytes = c->n * 4 * d * sizeof(double);
-  poly = bsfit__alloc(NULL, *bytes);
-  if (poly == NULL) return NULL;
-  for (s = 3; s < c->n; s++)
-    if (c->knots[s + 1] > c->knots[s]) bsfit__cubic_span_poly(c, s, poly + s * 4 * d);
-  return poly;
-}
-
-static void poly_free(double *poly, size_t bytes) {
-  if (poly) bsfit__free(NULL, poly, bytes);
+static void polys_free(span_polys *sp) {
+  if (sp) bsfit__free(NULL, sp->coef, sp->bytes);
 }
 
 /* C, C', C'' at u in span s from the span's polynomial (d: the dimension). */
 #if defined(__GNUC__)
 __attribute__((always_inline))
 #endif
-static inline void poly_derivs_d(const foot_ctx *F, size_t s, double u, double *D, const size_t d) {
-  const double *U = F->c->knots, *cf = F->poly + s * 4 * d;
+static inline void poly_derivs_d(foot_ctx *F, size_t s, double u, double *D, const size_t d) {
+  const double *U = F->c->knots, *cf = F->poly->coef + s * 4 * d;
   double hinv = 1.0 / (U[s + 1] - U[s]), t = (u - U[s]) * hinv;
   size_t q;
+  if (!F->poly->ready[s]) {
+    bsfit__cubic_span_poly(F->c, s, F->poly->coef + s * 4 * d);
+    F->poly->ready[s] = 1;
+  }
   for (q = 0; q < d; q++) {
     double c0 = cf[q], c1 = cf[d + q], c2 = cf[2 * d + q], c3 = cf[3 * d + q];
     D[q] = ((c3 * t + c2) * t + c1) * t + c0;
@@ -167,46 +171,9 @@ static inline void poly_derivs_d(const foot_ctx *F, size_t s, double u, double *
   }
 }
 
-static void poly_derivs(const foot_ctx *F, size_t s, double u, double *D) {
+static void poly_derivs(foot_ctx *F, size_t s, double u, double *D) {
   if (F->c->dim == 2) poly_derivs_d(F, s, u, D, 2); /* sections: unrolled */
   else poly_derivs_d(F, s, u, D, (size_t)F->c->dim);
-}
-
-static double ratio(double a, double b) { return b != 0.0 ? a / b : 0.0; } /* 0/0 = 0 */
-
-/* The hot case of projection, a polynomial cubic: C, C', C'' in span s from the basis
-** of degrees 1..3 and the derivative rule N'_{i,p} = p (N_{i,p-1} / (U_{i+p} - U_i) -
-** N_{i+1,p-1} / (U_{i+p+1} - U_{i+1})), without A2.3's tables. */
-static void cubic_derivs_span(const bsfit_curve *c, size_t s, double u, double *D) {
-  const double *U = c->knots;
-  double N1[2], N2[3], N3[4], dN2[3], D1[4], D2[4];
-  size_t d = (size_t)c->dim, q;
-  int j;
-  bsfit_basis_funs(s, u, 1, U, N1); /* N_{s-1,1}, N_{s,1} */
-  bsfit_basis_funs(s, u, 2, U, N2); /* N_{s-2,2} .. N_{s,2} */
-  bsfit_basis_funs(s, u, 3, U, N3); /* N_{s-3,3} .. N_{s,3} */
-  for (j = 0; j < 3; j++) { /* function i = s-2+j of degree 2 */
-    size_t i = s - 2 + (size_t)j;
-    double lo = j >= 1 ? N1[j - 1] : 0.0, hi = j <= 1 ? N1[j] : 0.0;
-    dN2[j] = 2.0 * (ratio(lo, U[i + 2] - U[i]) - ratio(hi, U[i + 3] - U[i + 1]));
-  }
-  for (j = 0; j < 4; j++) { /* function i = s-3+j of degree 3 */
-    size_t i = s - 3 + (size_t)j;
-    double lo = j >= 1 ? N2[j - 1] : 0.0, hi = j <= 2 ? N2[j] : 0.0;
-    double dlo = j >= 1 ? dN2[j - 1] : 0.0, dhi = j <= 2 ? dN2[j] : 0.0;
-    double a = U[i + 3] - U[i], b = U[i + 4] - U[i + 1];
-    D1[j] = 3.0 * (ratio(lo, a) - ratio(hi, b));
-    D2[j] = 3.0 * (ratio(dlo, a) - ratio(dhi, b));
-  }
-  for (q = 0; q < 3 * d; q++) D[q] = 0.0;
-  for (j = 0; j < 4; j++) {
-    const double *P = c->ctrl + (s - 3 + (size_t)j) * d;
-    for (q = 0; q < d; q++) {
-      D[q] += N3[j] * P[q];
-      D[d + q] += D1[j] * P[q];
-      D[2 * d + q] += D2[j] * P[q];
-    }
-  }
 }
 
 #if defined(__GNUC__)
@@ -226,7 +193,6 @@ GEOM_INLINE double foot_eval(foot_ctx *F, double u, double *D, const int poly2) 
   F->s = s;
   if (poly2) poly_derivs_d(F, s, w, D, 2);
   else if (F->poly) poly_derivs(F, s, w, D);
-  else if (poly_form(c)) cubic_derivs_span(c, s, w, D);
   else bsfit__curve_derivs_span(c, s, w, 2, D);
   for (q = 0; q < d; q++) d2 += (D[q] - F->P[q]) * (D[q] - F->P[q]);
   return d2;
@@ -313,6 +279,7 @@ static double closest_from(foot_ctx *F, double v, double h, double *d2) {
 bsfit_err bsfit_curve_closest(const bsfit_curve *c, const double *P, double *u, double *dist,
                               bsfit_status *st) {
   foot_ctx F;
+  span_polys sp;
   double a, b, D[3 * 4], best = INFINITY, ubest = 0.0, hbest = 0.0, d2;
   size_t s, i, p;
   bsfit_err e = bsfit_curve_validate(c, st);
@@ -322,7 +289,7 @@ bsfit_err bsfit_curve_closest(const bsfit_curve *c, const double *P, double *u, 
     return bsfit__fail(st, BSFIT_ENONFINITE, "point P is not finite");
   bsfit_curve_domain(c, &a, &b);
   p = (size_t)c->degree;
-  foot_init(&F, c, NULL); /* one point: converting every span would not pay */
+  foot_init(&F, c, polys_new(c, &sp));
   F.P = P;
   F.lo = a;
   F.hi = b;
@@ -347,6 +314,7 @@ bsfit_err bsfit_curve_closest(const bsfit_curve *c, const double *P, double *u, 
   ubest = closest_from(&F, ubest, hbest, &d2);
   *u = bsfit__curve_wrap(c, ubest);
   if (dist) *dist = sqrt(d2);
+  polys_free(F.poly);
   return bsfit__ok(st);
 }
 
@@ -355,8 +323,9 @@ bsfit_err bsfit_curve_closest(const bsfit_curve *c, const double *P, double *u, 
 bsfit_err bsfit_curve_closest_many(const bsfit_curve *c, const double *pts, size_t m, double *u,
                                    double *dist, bsfit_status *st) {
   foot_ctx F;
-  double a, b, D[3 * 4], *smp, *par, *step, *poly;
-  size_t s, i, k, K = 0, p, d, q, bytes, pbytes;
+  double a, b, D[3 * 4], *smp, *par, *step;
+  size_t s, i, k, K = 0, p, d, q, bytes;
+  span_polys sp;
   bsfit_err e = bsfit_curve_validate(c, st);
   if (e != BSFIT_OK) return e;
   if (m > 0 && (pts == NULL || u == NULL)) return bsfit__fail(st, BSFIT_EINVAL, "no points or no output");
@@ -372,8 +341,7 @@ bsfit_err bsfit_curve_closest_many(const bsfit_curve *c, const double *pts, size
   if (smp == NULL) return bsfit__fail(st, BSFIT_ENOMEM, "out of memory for %zu samples", K);
   par = smp + K * d;
   step = par + K;
-  poly = poly_new(c, &pbytes);
-  foot_init(&F, c, poly);
+  foot_init(&F, c, polys_new(c, &sp));
   F.P = pts; /* unused by the sampling below */
   for (s = p, k = 0; s < c->n; s++) {
     double h = (c->knots[s + 1] - c->knots[s]) / CLOSEST_SAMPLES;
@@ -402,7 +370,7 @@ bsfit_err bsfit_curve_closest_many(const bsfit_curve *c, const double *pts, size
     u[i] = bsfit__curve_wrap(c, closest_from(&F, par[kb], step[kb], &d2));
     if (dist) dist[i] = sqrt(d2);
   }
-  poly_free(poly, pbytes);
+  polys_free(F.poly);
   bsfit__free(NULL, smp, bytes);
   return bsfit__ok(st);
 }
@@ -410,8 +378,9 @@ bsfit_err bsfit_curve_closest_many(const bsfit_curve *c, const double *pts, size
 bsfit_err bsfit_curve_project_many(const bsfit_curve *c, const double *pts, size_t m, double *u,
                                    double *dist, int iters, bsfit_status *st) {
   foot_ctx F;
-  double a, b, d2, *poly;
-  size_t i, d, pbytes = 0;
+  double a, b, d2;
+  size_t i, d;
+  span_polys sp;
   bsfit_err e = bsfit__curve_check(c, st);
   if (e != BSFIT_OK) return e;
   if (m > 0 && (pts == NULL || u == NULL))
@@ -422,8 +391,7 @@ bsfit_err bsfit_curve_project_many(const bsfit_curve *c, const double *pts, size
     if (!bsfit__all_finite(pts + i * d, d) || !isfinite(u[i]))
       return bsfit__fail(st, BSFIT_ENONFINITE, "point %zu or its parameter is not finite", i);
   bsfit_curve_domain(c, &a, &b);
-  poly = m > 8 ? poly_new(c, &pbytes) : NULL; /* few points: not worth converting */
-  foot_init(&F, c, poly);
+  foot_init(&F, c, polys_new(c, &sp));
   for (i = 0; i < m; i++) {
     F.P = pts + i * d;
     /* open: the domain; periodic: one period either side (wrapped at the end) */
@@ -432,7 +400,7 @@ bsfit_err bsfit_curve_project_many(const bsfit_curve *c, const double *pts, size
     u[i] = bsfit__curve_wrap(c, foot_newton(&F, clampd(u[i], F.lo, F.hi), iters, &d2));
     if (dist) dist[i] = sqrt(d2);
   }
-  poly_free(poly, pbytes);
+  polys_free(F.poly);
   return bsfit__ok(st);
 }
 
