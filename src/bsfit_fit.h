@@ -211,8 +211,8 @@ BSFIT_API void bsfit_fitter_free(bsfit_fitter *f);
 
 /** Asks a multi-threaded BLAS (OpenBLAS) to run on one thread. bsfit's banded systems
 ** (bandwidth p) are far too small to gain from BLAS threads, while OpenBLAS's idle workers
-** spin on the other cores and slow everything else down (measured here: a projection of
-** 10^5 points took 12 ms instead of 5 next to the spinning workers). The setting is
+** spin on the other cores (sched_yield loops) and take them from everything else. The
+** setting is
 ** process-wide, so the library never makes it on its own: the `bsfit` program and the
 ** benchmarks call this at start; an application with BLAS work of its own decides.
 ** @return 1 when a BLAS thread setting was found and set, 0 otherwise (nothing to do). */
