@@ -211,8 +211,8 @@ end
 
 -- every s-th value of a Vector, as a Vector
 local function every(v, s)
-  local t, r = v:totable(), {}
-  for i = 1, #t, s do r[#r + 1] = t[i] end
+  local r = {} -- read only the values kept, not the whole section into a table
+  for i = 1, #v, s do r[#r + 1] = v:get(i) end
   return bs.vector.new(r)
 end
 
