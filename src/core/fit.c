@@ -26,7 +26,7 @@ static size_t block_bytes(const bsfit_fitter *f, size_t off[13]) {
   size_t counts[12], i, total = 0;
   counts[0] = f->nk;                             /* U */
   counts[1] = f->periodic ? N + 1 : 0;           /* period */
-  counts[2] = (n - p) * f->tri;                  /* inv */
+  counts[2] = bsfit__fit_poly_stride(f->p) ? 0 : (n - p) * f->tri; /* inv (degrees > 3) */
   counts[3] = (p + 1) * n;                       /* band */
   counts[4] = 4 * n;                             /* rhs */
   counts[5] = 3 * n;                             /* work */

@@ -27,8 +27,14 @@
 
 #if defined(__GNUC__)
 #  define FIT_INLINE static inline __attribute__((always_inline))
+/* Pairs of doubles (GCC/Clang vector extensions: SSE2 on x86-64, NEON on arm64, plain
+** pairs elsewhere) for the hot kernels; other compilers take the scalar code. */
+#  define FIT_PAIRS 1
+typedef double pair __attribute__((vector_size(16)));
+typedef long long pair_mask __attribute__((vector_size(16)));
 #else
 #  define FIT_INLINE static inline
+#  define FIT_PAIRS 0
 #endif
 
 #define MOMENT_MAX_DEGREE 3
@@ -41,43 +47,104 @@ size_t bsfit__fit_poly_stride(int p) {
   return p <= MOMENT_MAX_DEGREE ? (size_t)(p + 1) * (size_t)(p + 1) + 2 : 0;
 }
 
-/* Power coefficients C[i*(p+1) + a] of the basis functions N_{s-p+i}, in t with
-** u = mid + half t. Cox-de Boor on polynomials: left_j = u - U[s+1-j] and
-** right_j = U[s+j] - u are linear in t, the denominators come from inv. */
-FIT_INLINE void span_poly(const double *U, const double *inv, size_t s, const int p,
-                          double *C) {
-  double N[MOMENT_MAX_DEGREE + 1][MOMENT_MAX_DEGREE + 1], lc[MOMENT_MAX_DEGREE + 1],
-      rc[MOMENT_MAX_DEGREE + 1];
+/* Power coefficients of the basis functions N_{s-p+i} in t, u = mid + half t, stored
+** power-major: C[a*(p+1) + i] is the t^a coefficient of N_{s-p+i} (the layout the
+** kernels read: for a power a, the p+1 functions side by side). Cox-de Boor on
+** polynomials: left_{j-r} = (mid - U[s+1-j+r]) + half t and right_{r+1} = (U[s+r+1] - mid)
+** - half t. Every polynomial is kept as 4 coefficients, zero above its degree, so each step
+** is the same branch-free arithmetic and a constant p unrolls completely. */
+FIT_INLINE void span_poly(const double *U, size_t s, const int p, double *C) {
+  double N[MOMENT_MAX_DEGREE + 1][4] = {{1.0, 0.0, 0.0, 0.0}};
   double mid = 0.5 * (U[s] + U[s + 1]), half = 0.5 * (U[s + 1] - U[s]);
   int i, j, r, a;
-  memset(N, 0, sizeof N);
-  N[0][0] = 1.0;
   for (j = 1; j <= p; j++) {
-    double saved[MOMENT_MAX_DEGREE + 1] = {0.0};
-    lc[j] = mid - U[s + 1 - (size_t)j];
-    rc[j] = U[s + (size_t)j] - mid;
+    double saved[4] = {0.0, 0.0, 0.0, 0.0};
     for (r = 0; r < j; r++) {
-      double tmp[MOMENT_MAX_DEGREE + 1], iv = *inv++;
-      for (a = 0; a < j; a++) tmp[a] = N[r][a] * iv;
-      for (a = 0; a <= j; a++) { /* N_r = saved + right_{r+1} tmp, right = rc - half t */
-        N[r][a] = saved[a] + (a < j ? rc[r + 1] * tmp[a] : 0.0) - (a > 0 ? half * tmp[a - 1] : 0.0);
+      double lo = U[s + 1 - (size_t)(j - r)], hi = U[s + (size_t)r + 1], den = hi - lo;
+      double iv = den != 0.0 ? 1.0 / den : 0.0; /* 0/0 = 0 at repeated knots */
+      double lc = mid - lo, rc = hi - mid, tmp[4], sh[4];
+      for (a = 0; a < 4; a++) tmp[a] = N[r][a] * iv;
+      sh[0] = 0.0; /* sh = t * tmp */
+      for (a = 1; a < 4; a++) sh[a] = tmp[a - 1];
+      for (a = 0; a < 4; a++) {
+        N[r][a] = saved[a] + rc * tmp[a] - half * sh[a];
+        saved[a] = lc * tmp[a] + half * sh[a];
       }
-      for (a = 0; a <= j; a++) /* saved = left_{j-r} tmp, left = lc + half t */
-        saved[a] = (a < j ? lc[j - r] * tmp[a] : 0.0) + (a > 0 ? half * tmp[a - 1] : 0.0);
     }
-    for (a = 0; a <= j; a++) N[j][a] = saved[a];
+    for (a = 0; a < 4; a++) N[j][a] = saved[a];
   }
-  for (i = 0; i <= p; i++)
-    for (a = 0; a <= p; a++) C[i * (p + 1) + a] = N[i][a];
+  for (a = 0; a <= p; a++)
+    for (i = 0; i <= p; i++) C[a * (p + 1) + i] = N[i][a];
   C[(p + 1) * (p + 1)] = mid;
   C[(p + 1) * (p + 1) + 1] = half > 0.0 ? 1.0 / half : 0.0; /* empty spans get no points */
 }
 
+#if FIT_PAIRS
+/* span_poly for two spans at once, one per lane: the recurrence is a chain of dependent
+** products, so two independent spans side by side keep the pipeline full. Same
+** arithmetic, so the same results, as span_poly. */
+FIT_INLINE void span_poly_pair(const double *U, size_t s0, size_t s1, const int p, double *C0,
+                               double *C1) {
+  const pair zero = {0.0, 0.0}, one = {1.0, 1.0}, ends0 = {U[s0], U[s1]},
+             ends1 = {U[s0 + 1], U[s1 + 1]};
+  pair N[MOMENT_MAX_DEGREE + 1][4], mid = 0.5 * (ends0 + ends1), half = 0.5 * (ends1 - ends0);
+  int i, j, r, a;
+  for (i = 0; i <= p; i++)
+    for (a = 0; a < 4; a++) N[i][a] = zero;
+  N[0][0] = one;
+  for (j = 1; j <= p; j++) {
+    pair saved[4] = {zero, zero, zero, zero};
+    for (r = 0; r < j; r++) {
+      size_t l = (size_t)(j - r) - 1, h = (size_t)r + 1;
+      pair lo = {U[s0 - l], U[s1 - l]}, hi = {U[s0 + h], U[s1 + h]}, den = hi - lo;
+      pair_mask nz = (pair_mask)(den != zero);
+      pair iv = one / (pair)(((pair_mask)den & nz) | ((pair_mask)one & ~nz));
+      pair lc = mid - lo, rc = hi - mid, tmp[4], sh[4];
+      iv = (pair)((pair_mask)iv & nz); /* 0/0 = 0 at repeated knots */
+      for (a = 0; a < 4; a++) tmp[a] = N[r][a] * iv;
+      sh[0] = zero;
+      for (a = 1; a < 4; a++) sh[a] = tmp[a - 1];
+      for (a = 0; a < 4; a++) {
+        N[r][a] = saved[a] + rc * tmp[a] - half * sh[a];
+        saved[a] = lc * tmp[a] + half * sh[a];
+      }
+    }
+    for (a = 0; a < 4; a++) N[j][a] = saved[a];
+  }
+  for (a = 0; a <= p; a++)
+    for (i = 0; i <= p; i++) {
+      C0[a * (p + 1) + i] = N[i][a][0];
+      C1[a * (p + 1) + i] = N[i][a][1];
+    }
+  C0[(p + 1) * (p + 1)] = mid[0];
+  C1[(p + 1) * (p + 1)] = mid[1];
+  C0[(p + 1) * (p + 1) + 1] = half[0] > 0.0 ? 1.0 / half[0] : 0.0;
+  C1[(p + 1) * (p + 1) + 1] = half[1] > 0.0 ? 1.0 / half[1] : 0.0;
+}
+
+static void prepare_polys(bsfit_fitter *f, const int p) {
+  size_t s, P = (size_t)p, stride = bsfit__fit_poly_stride(p), last = f->nraw - 1;
+  double *C = f->poly;
+  for (s = P; s + 1 <= last; s += 2, C += 2 * stride) span_poly_pair(f->U, s, s + 1, p, C, C + stride);
+  if (s == last) span_poly(f->U, s, p, C);
+}
+#else
+static void prepare_polys(bsfit_fitter *f, const int p) {
+  size_t s, P = (size_t)p, stride = bsfit__fit_poly_stride(p);
+  for (s = P; s < f->nraw; s++) span_poly(f->U, s, p, f->poly + (s - P) * stride);
+}
+#endif
+
 void bsfit__fit_prepare_spans(bsfit_fitter *f) {
-  size_t s, p = (size_t)f->p, stride = bsfit__fit_poly_stride(f->p);
+  size_t s, p = (size_t)f->p;
   const double *U = f->U;
   double *inv = f->inv;
-  /* the Cox-de Boor denominators U[s+r+1] - U[s+1-j+r] depend on the span only */
+  if (bsfit__fit_poly_stride(f->p) > 0) {
+    if (p == 3) prepare_polys(f, 3); /* the common degree, unrolled */
+    else prepare_polys(f, f->p);
+    return;
+  }
+  /* higher degrees: the Cox-de Boor denominators U[s+r+1] - U[s+1-j+r] of each span */
   for (s = p; s < f->nraw; s++) {
     size_t j, r;
     for (j = 1; j <= p; j++)
@@ -85,13 +152,6 @@ void bsfit__fit_prepare_spans(bsfit_fitter *f) {
         double den = U[s + r + 1] - U[s + 1 - j + r];
         *inv++ = den != 0.0 ? 1.0 / den : 0.0; /* 0/0 = 0 at repeated knots */
       }
-  }
-  if (stride == 0) return;
-  for (s = p; s < f->nraw; s++) {
-    const double *iv = f->inv + (s - p) * f->tri;
-    double *C = f->poly + (s - p) * stride;
-    if (p == 3) span_poly(U, iv, s, 3, C); /* the common degree, unrolled */
-    else span_poly(U, iv, s, f->p, C);
   }
 }
 
@@ -190,19 +250,19 @@ FIT_INLINE void flush_moments(bsfit_fitter *f, size_t s, const int p, const int 
   for (a = 0; a <= p; a++) /* T = H C^T */
     for (j = 0; j <= p; j++) {
       double v = 0.0;
-      for (b = 0; b <= p; b++) v += M[a + b] * C[j * (p + 1) + b];
+      for (b = 0; b <= p; b++) v += M[a + b] * C[b * (p + 1) + j];
       T[a * (p + 1) + j] = v;
     }
   for (i = 0; i <= p; i++)
     for (j = 0; j <= i; j++) {
       double v = 0.0;
-      for (a = 0; a <= p; a++) v += C[i * (p + 1) + a] * T[a * (p + 1) + j];
+      for (a = 0; a <= p; a++) v += C[a * (p + 1) + i] * T[a * (p + 1) + j];
       f->band[(size_t)(i - j) + (first + (size_t)j) * ldab] += v;
     }
   for (i = 0; i <= p; i++)
     for (c = 0; c < dim; c++) {
       double v = 0.0;
-      for (a = 0; a <= p; a++) v += C[i * (p + 1) + a] * R[a * 4 + c];
+      for (a = 0; a <= p; a++) v += C[a * (p + 1) + i] * R[a * 4 + c];
       f->rhs[(size_t)c * n + first + (size_t)i] += v;
     }
   f->occ[first] = 1;
@@ -272,7 +332,7 @@ FIT_INLINE void moment_residuals(const bsfit_fitter *f, const double *ctrl, cons
     for (a = 0; a <= p; a++) /* the span's curve: D_a = sum_i C_ia P_i */
       for (c = 0; c < dim; c++) {
         double v = 0.0;
-        for (i = 0; i <= p; i++) v += C[i * (p + 1) + a] * P[i * dim + c];
+        for (i = 0; i <= p; i++) v += C[a * (p + 1) + i] * P[i * dim + c];
         D[a * 4 + c] = v;
       }
     do {
@@ -292,11 +352,57 @@ FIT_INLINE void moment_residuals(const bsfit_fitter *f, const double *ctrl, cons
   *out = acc;
 }
 
-#if defined(__GNUC__)
-/* Cubic 2D, the shape of nearly every section, with pairs of doubles (GCC/Clang vector
-** extensions: SSE2 on x86-64, NEON on arm64, plain pairs elsewhere): the 15 running sums
-** fit in 8 registers instead of spilling to the stack, and a point is 16 pair operations. */
-typedef double pair __attribute__((vector_size(16)));
+#if FIT_PAIRS
+/* Cubic 2D, the shape of nearly every section, in pairs: the 15 running sums fit in 8
+** registers instead of spilling to the stack, and a point is 16 pair operations. */
+
+/* An unaligned pair in memory (the band and right-hand sides have no 16-byte alignment). */
+typedef double pair_u __attribute__((vector_size(16), aligned(8)));
+
+FIT_INLINE void add_pair(double *dst, pair v) {
+  *(pair_u *)(void *)dst += v;
+}
+
+/* flush_moments for cubic 2D in pairs. With C power-major, T_a = sum_b M_{a+b} C_b (C_b:
+** the four functions' t^b coefficients) is the row a of H C^T, and row i of C H C^T is
+** sum_a C_ai T_a; the band takes row i from column i on (lower storage, by symmetry). */
+FIT_INLINE void cubic2_flush(bsfit_fitter *f, size_t s, const double *C, const double *M,
+                             const double *Rx, const double *Ry) {
+  size_t first = s - 3, n = f->nraw;
+  double *band = f->band + 4 * first;
+  pair Tlo[4], Thi[4], lo, hi;
+  int a, b;
+  for (a = 0; a < 4; a++) {
+    pair tl = {0.0, 0.0}, th = tl;
+    for (b = 0; b < 4; b++) {
+      pair cl = {C[4 * b], C[4 * b + 1]}, ch = {C[4 * b + 2], C[4 * b + 3]};
+      tl += M[a + b] * cl, th += M[a + b] * ch;
+    }
+    Tlo[a] = tl, Thi[a] = th;
+  }
+  lo = (pair){0.0, 0.0}, hi = lo; /* row 0: columns 0..3 */
+  for (a = 0; a < 4; a++) lo += C[4 * a] * Tlo[a], hi += C[4 * a] * Thi[a];
+  add_pair(band, lo), add_pair(band + 2, hi);
+  lo = (pair){0.0, 0.0}, hi = lo; /* row 1: columns 1..3 */
+  for (a = 0; a < 4; a++) lo += C[4 * a + 1] * Tlo[a], hi += C[4 * a + 1] * Thi[a];
+  band[4] += lo[1], add_pair(band + 5, hi);
+  lo = (pair){0.0, 0.0}, hi = lo; /* rows 2 and 3: columns 2..3 and 3 */
+  for (a = 0; a < 4; a++) lo += C[4 * a + 2] * Thi[a], hi += C[4 * a + 3] * Thi[a];
+  add_pair(band + 8, lo), band[12] += hi[1];
+  lo = (pair){0.0, 0.0}, hi = lo; /* right-hand sides: rhs_i += sum_a C_ai R_a */
+  for (a = 0; a < 4; a++) {
+    pair cl = {C[4 * a], C[4 * a + 1]}, ch = {C[4 * a + 2], C[4 * a + 3]};
+    lo += Rx[a] * cl, hi += Rx[a] * ch;
+  }
+  add_pair(f->rhs + first, lo), add_pair(f->rhs + first + 2, hi);
+  lo = (pair){0.0, 0.0}, hi = lo;
+  for (a = 0; a < 4; a++) {
+    pair cl = {C[4 * a], C[4 * a + 1]}, ch = {C[4 * a + 2], C[4 * a + 3]};
+    lo += Ry[a] * cl, hi += Ry[a] * ch;
+  }
+  add_pair(f->rhs + n + first, lo), add_pair(f->rhs + n + first + 2, hi);
+  f->occ[first] = 1;
+}
 
 static int cubic2_assemble(bsfit_fitter *f, const double *pts, size_t m, const double *u,
                            const double *w) {
@@ -305,7 +411,7 @@ static int cubic2_assemble(bsfit_fitter *f, const double *pts, size_t m, const d
   int badw = 0;
   walk_init(&sw, f);
   while (k < m) {
-    double x = walk_param(&sw, u, k), lo, hi, mid, scale, M[7], R[16];
+    double x = walk_param(&sw, u, k), lo, hi, mid, scale, M[7], Rx[4], Ry[4];
     pair m01 = {0.0, 0.0}, m23 = m01, m45 = m01, m6 = m01, x01 = m01, x23 = m01, y01 = m01,
          y23 = m01;
     const double *C;
@@ -325,9 +431,9 @@ static int cubic2_assemble(bsfit_fitter *f, const double *pts, size_t m, const d
     } while (x >= lo && x < hi);
     M[0] = m01[0], M[1] = m01[1], M[2] = m23[0], M[3] = m23[1], M[4] = m45[0], M[5] = m45[1];
     M[6] = m6[0];
-    R[0] = x01[0], R[4] = x01[1], R[8] = x23[0], R[12] = x23[1];
-    R[1] = y01[0], R[5] = y01[1], R[9] = y23[0], R[13] = y23[1];
-    flush_moments(f, sw.s, 3, 2, C, M, R);
+    Rx[0] = x01[0], Rx[1] = x01[1], Rx[2] = x23[0], Rx[3] = x23[1];
+    Ry[0] = y01[0], Ry[1] = y01[1], Ry[2] = y23[0], Ry[3] = y23[1];
+    cubic2_flush(f, sw.s, C, M, Rx, Ry);
   }
   return badw;
 }
@@ -353,7 +459,7 @@ static void cubic2_residuals(const bsfit_fitter *f, const double *ctrl, const do
       pair v = {0.0, 0.0};
       for (i = 0; i <= 3; i++) {
         pair pi = {P[2 * i], P[2 * i + 1]};
-        v += C[i * 4 + a] * pi;
+        v += C[a * 4 + i] * pi;
       }
       D[a] = v;
     }
@@ -489,7 +595,7 @@ int bsfit__fit_assemble(bsfit_fitter *f, const double *pts, size_t m, int dim, c
   memset(f->band, 0, (size_t)(p + 1) * f->nraw * sizeof(double));
   memset(f->rhs, 0, (size_t)dim * f->nraw * sizeof(double));
   memset(f->occ, 0, f->nraw);
-#if defined(__GNUC__)
+#if FIT_PAIRS
   if (p == 3 && dim == 2) return cubic2_assemble(f, pts, m, u, w);
 #endif
   if (p == 3 && dim == 3) return moment_assemble(f, pts, m, 3, u, w, 3);
@@ -502,7 +608,7 @@ void bsfit__fit_residuals(const bsfit_fitter *f, const double *ctrl, const doubl
                           double *wrms, double *max, size_t *imax) {
   resid_acc acc;
   int p = f->p;
-#if defined(__GNUC__)
+#if FIT_PAIRS
   if (p == 3 && dim == 2) cubic2_residuals(f, ctrl, pts, m, u, w, res, &acc);
   else
 #endif

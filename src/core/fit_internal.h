@@ -82,8 +82,8 @@ struct bsfit_fitter {
   size_t block_size;
   double *U;      /* nk knots */
   double *period; /* N+1 (periodic) */
-  double *inv;    /* (nraw - p) * tri */
-  double *poly;   /* (nraw - p) * bsfit__fit_poly_stride(p) */
+  double *inv;    /* (nraw - p) * tri, degrees above 3 (point-by-point basis) */
+  double *poly;   /* (nraw - p) * bsfit__fit_poly_stride(p), degrees 1..3 */
   double *band;   /* (p+1) * nraw, lower band storage */
   double *rhs;    /* nraw * 4, column-major (coordinate k at rhs + k*nraw) */
   double *work;   /* 3 * nraw */
@@ -100,7 +100,8 @@ struct bsfit_fitter {
 /* Doubles per span in `poly` (degrees 1..3: the basis functions' power coefficients, then
 ** the span's centre and inverse half-length), 0 for higher degrees. */
 size_t bsfit__fit_poly_stride(int p);
-/* Per-span data of the current knots: reciprocal knot differences (and `poly`). */
+/* Per-span data of the current knots: `poly` (degrees 1..3) or reciprocal knot
+** differences (`inv`, higher degrees). */
 void bsfit__fit_prepare_spans(bsfit_fitter *f);
 /* Assembly: band, rhs (raw unknowns), occupancy; returns nonzero when a weight is <= 0
 ** or NaN. Other non-finite input shows up as non-finite band or rhs entries. */
