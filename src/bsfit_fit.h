@@ -231,7 +231,10 @@ BSFIT_API int bsfit_blas_single_thread(void);
 ** @param[in]  dim       1..4 (equal to tangent_dim when tangents are set).
 ** @param[in]  u         m parameters (need not be sorted, though sorted is faster; knot
 **                       rules need them non-decreasing). Periodic fits take them modulo
-**                       the period.
+**                       the period. Open fits with fixed knots: a parameter outside the
+**                       domain [U[p], U[n]] belongs to the end span on its side and is
+**                       fitted by that span's polynomial continued, as bsfit_curve_eval
+**                       extrapolates (the residuals agree with it).
 ** @param[in]  w         m weights, or NULL for all 1.
 ** @param[out] out       receives the curve (open: count control points; periodic: the
 **                       expanded form, bsfit_curve_distinct(out) == count). Its arrays are

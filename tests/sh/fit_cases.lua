@@ -90,6 +90,20 @@ for p = 1, 5 do
   end
 end
 
+-- the fewest control points a degree allows: one Bezier segment (open), a period of p+1
+-- distinct control points (every unknown wraps), and a few more
+for p = 1, 4 do
+  local P = section(60, 2, false, nil)
+  record(string.format("open p=%d, n=p+1", p), {degree = p, count = p + 1}, P,
+         bs.params(P, "chord"), weights(#P))
+  P = section(60, 2, true, nil)
+  for extra = 1, 3 do
+    record(string.format("periodic p=%d, N=p+%d", p, extra),
+           {degree = p, count = p + extra, periodic = true}, P,
+           bs.params(P, "chord", {closed = true}), weights(#P))
+  end
+end
+
 -- coincident consecutive points (shared parameters), open and periodic, centripetal too
 do
   local P = section(150, 2, false, 7)
@@ -129,6 +143,15 @@ do
   end
   record("open shuffled, fixed knots", {degree = 3, knots = C:knots()}, bs.points.new(rows_), us,
          weights(n))
+end
+
+-- fixed knots on a narrower interval than the parameters: the points beyond the ends are
+-- fitted by the end spans' polynomials continued (as C:eval extrapolates)
+do
+  local P = section(120, 2, false, nil)
+  local u = bs.params(P, "chord")
+  local K = bs.knots.new{degree = 3, values = {0.1, 0.1, 0.1, 0.1, 0.3, 0.5, 0.7, 0.9, 0.9, 0.9, 0.9}}
+  record("open, parameters beyond the knots", {degree = 3, knots = K}, P, u, weights(#P))
 end
 
 local f = assert(io.open(out_path, "w"))

@@ -29,7 +29,8 @@ def domain_params(t, p, n_stored, u, periodic):
 
 def design(t, p, n_stored, u, periodic, n_distinct):
     """Dense m x n_distinct collocation matrix (periodic: wrapped columns folded)."""
-    B = BSpline.design_matrix(u, t, p).toarray()
+    # beyond the domain of open knots the end pieces continue (bsfit's documented rule)
+    B = BSpline.design_matrix(u, t, p, extrapolate=not periodic).toarray()
     assert B.shape[1] == n_stored
     if periodic:
         F = B[:, :n_distinct].copy()
@@ -95,7 +96,8 @@ def check(c):
     unconstrained = not c["periodic"] and not c["fix_ends"] and c["tangent_start"] is None \
         and c["tangent_end"] is None
     order = np.argsort(u, kind="stable")
-    if unconstrained and np.all(np.diff(u[order]) > 0):   # scipy refuses shared parameters
+    inside = t[p] <= u.min() and u.max() <= t[n_stored]
+    if unconstrained and inside and np.all(np.diff(u[order]) > 0):  # scipy's own conditions
         s = make_lsq_spline(u[order], Q[order], t, p, w=np.sqrt(w[order]))
         err2 = np.abs(s.c - ctrl).max() / size
         if err2 > COEF_TOL:
