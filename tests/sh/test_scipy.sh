@@ -5,16 +5,9 @@
 set -u
 BSFIT=$1
 SRC=$2
-PY=/usr/bin/python3
-TMP=$(mktemp -d)
-trap 'rm -rf "$TMP"' EXIT
+. "$SRC/tests/sh/scipy_common.sh"
 pass=0
 fail=0
-if ! "$PY" -c "import scipy" 2>/dev/null; then
-  echo "scipy not installed (apt-get install python3-scipy): cannot cross-check" >&2
-  echo "0 passed, 1 failed"
-  exit 1
-fi
 for s in auto periodic carvalho; do
   if ! "$BSFIT" reconstruct "$SRC/tests/data/demo" -o "$TMP/$s" --strategy "$s" --format json,csv -q; then
     echo "not ok - reconstruct --strategy $s"; fail=$((fail + 1)); continue

@@ -7,14 +7,7 @@
 set -u
 BSFIT=$1
 SRC=$2
-PY=/usr/bin/python3
-TMP=$(mktemp -d)
-trap 'rm -rf "$TMP"' EXIT
-if ! "$PY" -c "import scipy" 2>/dev/null; then
-  echo "scipy not installed (apt-get install python3-scipy): cannot cross-check" >&2
-  echo "0 passed, 1 failed"
-  exit 1
-fi
+. "$SRC/tests/sh/scipy_common.sh"
 if ! "$BSFIT" "$SRC/tests/sh/fit_cases.lua" "$TMP/cases.json"; then
   echo "not ok - fit_cases.lua"
   echo "0 passed, 1 failed"
