@@ -21,26 +21,8 @@
 #define EPS_DENSE 1e-9  /* against the dense normal equations */
 
 /* {======================================================================
-** Helpers: a counting allocator, sampling, a dense reference solver
+** Helpers: sampling, a dense reference solver
 ** ======================================================================= */
-
-typedef struct count_alloc {
-  size_t live_bytes, allocs, fail_at; /* fail the fail_at-th allocation (1-based), 0 = never */
-} count_alloc;
-
-static void *count_fn(void *ud, void *p, size_t osz, size_t nsz) {
-  count_alloc *c = ud;
-  if (nsz == 0) {
-    if (p) c->live_bytes -= osz;
-    free(p);
-    return NULL;
-  }
-  c->allocs++;
-  if (c->fail_at && c->allocs == c->fail_at) return NULL;
-  p = realloc(p, nsz);
-  if (p) c->live_bytes += nsz - (p && osz ? osz : 0);
-  return p;
-}
 
 static void expect_error(bsfit_err got, bsfit_err want, const bsfit_status *st) {
   assert_int_equal(got, want);
@@ -665,10 +647,11 @@ static void test_reused_fitter_matches_fresh(void **state) {
 
 static void test_reconfigure_and_reuse(void **state) {
   test_rng r = {61};
-  size_t m = 100, before;
+  size_t m = 100;
+  long before;
   double pts[200], u[100], w[100];
-  count_alloc ca = {0, 0, 0};
-  bsfit_allocator al = {count_fn, &ca};
+  counting ca = {0, 0, 0};
+  bsfit_allocator al = {counting_alloc, &ca};
   bsfit_fit_opts o;
   bsfit_fitter *f;
   bsfit_curve out;
@@ -681,9 +664,9 @@ static void test_reconfigure_and_reuse(void **state) {
   assert_int_equal(bsfit_fitter_new(&f, &o, &al, &st), BSFIT_OK);
   assert_int_equal(bsfit_fitter_fit(f, pts, m, 2, u, w, &out, NULL, NULL, &st), BSFIT_OK);
   /* when refitted with the same shape: no allocation at all */
-  before = ca.allocs;
+  before = ca.calls;
   assert_int_equal(bsfit_fitter_fit(f, pts, m, 2, u, w, &out, NULL, NULL, &st), BSFIT_OK);
-  assert_int_equal(ca.allocs, before);
+  assert_int_equal(ca.calls, before);
   /* a failed reconfiguration keeps the old settings */
   o.count = 2;
   expect_error(bsfit_fitter_configure(f, &o, &st), BSFIT_EDEGREE, &st);
@@ -704,7 +687,7 @@ static void test_reconfigure_and_reuse(void **state) {
   assert_int_equal(bsfit_curve_distinct(&out), 17);
   bsfit_curve_free(&out);
   bsfit_fitter_free(f);
-  assert_int_equal(ca.live_bytes, 0);
+  assert_int_equal(ca.live, 0);
 }
 
 static void test_allocation_failures(void **state) {
@@ -715,8 +698,8 @@ static void test_allocation_failures(void **state) {
   noisy_curve(&r, m, pts, u, w);
   /* every allocation of new + fit fails in turn: ENOMEM, nothing leaks */
   for (nth = 1;; nth++) {
-    count_alloc ca = {0, 0, nth};
-    bsfit_allocator al = {count_fn, &ca};
+    counting ca = {0, (long)nth, 0};
+    bsfit_allocator al = {counting_alloc, &ca};
     bsfit_fit_opts o;
     bsfit_fitter *f = NULL;
     bsfit_curve out;
@@ -728,7 +711,7 @@ static void test_allocation_failures(void **state) {
     if (e == BSFIT_OK) e = bsfit_fitter_fit(f, pts, m, 2, u, w, &out, NULL, NULL, NULL);
     bsfit_curve_free(&out);
     bsfit_fitter_free(f);
-    assert_int_equal(ca.live_bytes, 0);
+    assert_int_equal(ca.live, 0);
     if (e == BSFIT_OK) break;
     assert_int_equal(e, BSFIT_ENOMEM);
   }
