@@ -137,6 +137,30 @@ BSFIT_API bsfit_err bsfit_knots_empty_spans(const double *U, size_t nknots, int 
 ** The fitter: weighted least squares, open or periodic (SPEC 2.3, 2.8)
 ** ===================================================================== */
 
+/** How a fitter solves its least-squares problem. */
+typedef enum bsfit_solver {
+  /** the banded normal equations N^T W N P = N^T W Q by banded Cholesky (dpbtrf): the
+  ** fastest, and accurate while the normal matrix is well conditioned; its condition
+  ** number is the square of the weighted collocation matrix's, so rep.rcond near 1e-16
+  ** means digits are lost (or BSFIT_ENOTSPD). The default. */
+  BSFIT_SOLVER_CHOLESKY = 0,
+  /** QR of the weighted collocation rows sqrt(w_k) N(u_k) (Householder reflections, the
+  ** rows of a span at a time) into a banded upper triangle (periodic fits: bordered by p
+  ** dense columns), then banded back substitution (dtbtrs): O(m p (p + p_border + dim)), no
+  ** normal matrix, so the accuracy follows the condition number of the collocation matrix
+  ** itself. About 4x the Cholesky time for open fits, 7x for periodic ones (bench_fit).
+  ** Parameters out of order (after wrapping, for periodic fits) are sorted by span first,
+  ** with an m-entry index array the fitter keeps for later fits. */
+  BSFIT_SOLVER_QR = 1,
+  /** Cholesky, and QR again when the normal matrix is not positive definite in floating
+  ** point or its rcond is below BSFIT_SOLVER_AUTO_RCOND. The rcond is then always computed. */
+  BSFIT_SOLVER_AUTO = 2
+} bsfit_solver;
+
+/** BSFIT_SOLVER_AUTO refits by QR below this reciprocal condition number of the normal
+** matrix: Cholesky's relative error grows like eps / rcond, QR's like eps / sqrt(rcond). */
+#define BSFIT_SOLVER_AUTO_RCOND 1e-10
+
 /** Settings of a fitter. Initialise with bsfit_fit_opts_init, then change fields. */
 typedef struct bsfit_fit_opts {
   int degree;            /**< p, 1..BSFIT_MAX_DEGREE (default 3) */
@@ -156,9 +180,11 @@ typedef struct bsfit_fit_opts {
   const double *tangent_end; /**< the same at the end: C'(b), fixes P_{n-1} and P_{n-2} */
   int tangent_dim;       /**< number of values in the tangents (1..4); fits of another
                               dimension are rejected with BSFIT_EDIM */
+  bsfit_solver solver;   /**< default BSFIT_SOLVER_CHOLESKY */
 } bsfit_fit_opts;
 
-/** Default settings: cubic, open, count 0 (must be set), averaging knots, no constraints. */
+/** Default settings: cubic, open, count 0 (must be set), averaging knots, no constraints,
+** Cholesky solver. */
 BSFIT_API void bsfit_fit_opts_init(bsfit_fit_opts *o);
 
 /** Diagnostics of one fit. */
@@ -177,11 +203,16 @@ typedef struct bsfit_fit_report {
                                 above) and S the p x p Schur complement of the block
                                 elimination (LAPACK dpocon's estimate): both are principal
                                 parts of A^-1 in the 2-norm sense, so this is an upper bound
-                                of the true value within the estimator's usual factor. 1 for
-                                a fit with no free unknowns. */
+                                of the true value within the estimator's usual factor.
+                                QR solver: the same A, as R^T R: open fits exact as above (two
+                                triangular solves, exact while the parameters lie in the domain),
+                                periodic fits Hager's 1-norm estimate of
+                                |A^-1|_1 (LAPACK dlacon's algorithm; a lower bound, so rcond
+                                from above). 1 for a fit with no free unknowns. */
   size_t n_empty_spans;    /**< spans of positive length holding no parameter */
   size_t first_empty_span; /**< knot-vector index of the first one (valid when n_empty_spans) */
   size_t m;                /**< number of points fitted */
+  bsfit_solver solver;     /**< the solver that gave the result (CHOLESKY or QR) */
 } bsfit_fit_report;
 
 /** Opaque fitter: settings plus a workspace sized by degree and count, reused by every
@@ -220,10 +251,11 @@ BSFIT_API int bsfit_blas_single_thread(void);
 
 /** Fits the points: minimises sum_k w_k |Q_k - C(ū_k)|^2 over the control points.
 **
-** Assembles N^T W N (banded, bandwidth p) and N^T W Q span by span from the p+1
-** non-zero basis functions of each point and solves it by banded Cholesky (all
+** Cholesky solver: assembles N^T W N (banded, bandwidth p) and N^T W Q span by span from
+** the p+1 non-zero basis functions of each point and solves it by banded Cholesky (all
 ** coordinates at once). Periodic fits fold the wrapped unknowns and solve the cyclic
-** system by block elimination of the last p unknowns: O(N p^2).
+** system by block elimination of the last p unknowns: O(N p^2). QR solver: see
+** bsfit_solver; both solve the same problem (the same minimum).
 **
 ** @param[in]  f         the fitter.
 ** @param[in]  pts       m points, row-major, dim per point.

@@ -75,6 +75,9 @@ static bsfit_err check_opts(const bsfit_fit_opts *o, bsfit_status *st) {
     return bsfit__fail(st, BSFIT_EINVAL, "control point count %zu is too large", o->count);
   if (o->knots == NULL && bsfit_knots_place_count(o->rule, o->degree, o->count) == 0)
     return bsfit__fail(st, BSFIT_EINVAL, "unknown knot rule %d", (int)o->rule);
+  if (o->solver != BSFIT_SOLVER_CHOLESKY && o->solver != BSFIT_SOLVER_QR &&
+      o->solver != BSFIT_SOLVER_AUTO)
+    return bsfit__fail(st, BSFIT_EINVAL, "unknown solver %d", (int)o->solver);
   if (o->periodic && (o->fix_ends || o->tangent_start || o->tangent_end))
     return bsfit__fail(st, BSFIT_EINVAL, "fixed ends and end tangents need an open fit");
   if ((o->tangent_start || o->tangent_end) && (o->tangent_dim < 1 || o->tangent_dim > 4))
@@ -124,6 +127,7 @@ static void apply_settings(bsfit_fitter *f, const bsfit_fit_opts *o) {
   if (f->periodic && !bsfit_knot_rule_closed(f->rule)) f->rule = BSFIT_KNOTS_PERIODIC_AVERAGING;
   if (!f->periodic && bsfit_knot_rule_closed(f->rule)) f->rule = BSFIT_KNOTS_AVERAGING;
   f->user_knots = o->knots != NULL;
+  f->solver = o->solver;
   f->fix_ends = o->fix_ends != 0;
   f->has_t0 = o->tangent_start != NULL;
   f->has_t1 = o->tangent_end != NULL;
@@ -148,6 +152,8 @@ bsfit_err bsfit_fitter_configure(bsfit_fitter *f, const bsfit_fit_opts *o, bsfit
   /* build the new configuration aside, so a failure leaves f as it was */
   memset(&next, 0, sizeof next);
   next.alloc = f->alloc;
+  next.order = f->order; /* the QR's index array depends on m only: kept */
+  next.order_cap = f->order_cap;
   apply_settings(&next, o);
   next.block_size = block_bytes(&next, off);
   next.block = bsfit__alloc(&next.alloc, next.block_size);
@@ -194,6 +200,7 @@ void bsfit_fitter_free(bsfit_fitter *f) {
   bsfit_allocator al;
   if (f == NULL) return;
   al = f->alloc;
+  bsfit__free(&al, f->order, f->order_cap * sizeof(size_t));
   bsfit__free(&al, f->block, f->block_size);
   bsfit__free(&al, f, sizeof *f);
 }
@@ -226,15 +233,8 @@ double bsfit__band_norm1(const double *ab, size_t ldab, int kd, size_t lo, size_
   return mx;
 }
 
-/* Values of the fixed control points: index -> coordinates (row-major, 4 slots). */
-typedef struct fixed_set {
-  size_t idx[4];
-  double val[4][4];
-  size_t count, lo, hi; /* free unknowns lo..hi (empty when count covers all) */
-} fixed_set;
-
-static void fixed_points(const bsfit_fitter *f, const double *pts, size_t m, int dim,
-                         fixed_set *fx) {
+void bsfit__fit_fixed(const bsfit_fitter *f, const double *pts, size_t m, int dim,
+                      bsfit__fixed_set *fx) {
   size_t n = f->nraw, p = (size_t)f->p, c;
   const double *U = f->U, *Q0 = pts, *Q1 = pts + (m - 1) * (size_t)dim;
   fx->count = 0;
@@ -269,7 +269,7 @@ static void fixed_points(const bsfit_fitter *f, const double *pts, size_t m, int
 }
 
 /* Moves the fixed unknowns' columns to the right-hand side: R_i -= A_ij P_j. */
-static void eliminate_fixed(bsfit_fitter *f, int dim, const fixed_set *fx) {
+static void eliminate_fixed(bsfit_fitter *f, int dim, const bsfit__fixed_set *fx) {
   size_t t, i, n = f->nraw, p = (size_t)f->p, ldab = p + 1, c;
   for (t = 0; t < fx->count; t++) {
     size_t j = fx->idx[t];
@@ -300,10 +300,10 @@ static bsfit_err empty_span_error(const bsfit_fitter *f, bsfit_err e, bsfit_stat
 static bsfit_err open_solve(bsfit_fitter *f, const double *pts, size_t m, int dim,
                             double *ctrl, double *rcond, bsfit_status *st) {
   size_t p = (size_t)f->p, n = f->nraw, ldab = p + 1, t, i, c, nf;
-  fixed_set fx;
+  bsfit__fixed_set fx;
   bsfit_err e = BSFIT_OK;
   int kd;
-  fixed_points(f, pts, m, dim, &fx);
+  bsfit__fit_fixed(f, pts, m, dim, &fx);
   nf = fx.hi > fx.lo ? fx.hi - fx.lo : 0;
   if (rcond) *rcond = 1.0;
   if (nf > 0) {
@@ -396,18 +396,6 @@ static bsfit_err prepare_out(const bsfit_fitter *f, int dim, bsfit_curve *out, b
   return bsfit_curve_alloc(out, f->p, dim, f->nraw, 0, &f->alloc, st);
 }
 
-static bsfit_err fit_solve(bsfit_fitter *f, const double *pts, size_t m, int dim,
-                           bsfit_curve *out, bsfit_fit_report *rep, bsfit_status *st) {
-  double *rc = rep ? &rep->rcond : NULL;
-  bsfit_err e;
-  size_t p = (size_t)f->p, d = (size_t)dim;
-  if (!f->periodic) return open_solve(f, pts, m, dim, out->ctrl, rc, st);
-  e = bsfit__periodic_solve(f, dim, out->ctrl, rc, st);
-  if (e != BSFIT_OK) return empty_span_error(f, e, st, NULL, NULL);
-  memcpy(out->ctrl + f->count * d, out->ctrl, p * d * sizeof(double));
-  return BSFIT_OK;
-}
-
 /* Do all points coincide? Scans only until the first point differing from Q_0. */
 static int all_coincide(const double *pts, size_t m, int dim) {
   size_t k, c, d = (size_t)dim;
@@ -430,21 +418,77 @@ static bsfit_err assemble_checked(bsfit_fitter *f, const double *pts, size_t m, 
   return BSFIT_OK;
 }
 
+static bsfit_err solution_finite(const bsfit_fitter *f, int dim, const bsfit_curve *out,
+                                 bsfit_status *st) {
+  if (bsfit__all_finite(out->ctrl, f->nraw * (size_t)dim)) return BSFIT_OK;
+  return bsfit__fail(st, BSFIT_ESINGULAR, "the solution is not finite: the normal matrix is "
+                     "numerically singular");
+}
+
+/* The periodic solvers write the N distinct control points; the expanded form repeats p. */
+static void wrap_ctrl(const bsfit_fitter *f, int dim, bsfit_curve *out) {
+  size_t p = (size_t)f->p, d = (size_t)dim;
+  if (f->periodic) memcpy(out->ctrl + f->count * d, out->ctrl, p * d * sizeof(double));
+}
+
+/* Normal equations, banded Cholesky. */
+static bsfit_err fit_cholesky(bsfit_fitter *f, const double *pts, size_t m, int dim,
+                              const double *u, const double *w, bsfit_curve *out, double *rc,
+                              bsfit_status *st) {
+  bsfit_err e = assemble_checked(f, pts, m, dim, u, w, st);
+  if (e == BSFIT_OK) e = prepare_out(f, dim, out, st);
+  if (e != BSFIT_OK) return e;
+  e = f->periodic ? bsfit__periodic_solve(f, dim, out->ctrl, rc, st)
+                  : open_solve(f, pts, m, dim, out->ctrl, rc, st);
+  if (e != BSFIT_OK) return empty_span_error(f, e, st, NULL, NULL);
+  wrap_ctrl(f, dim, out);
+  return solution_finite(f, dim, out, st);
+}
+
+/* Givens QR of the weighted rows (fit_qr.c). */
+static bsfit_err fit_qr(bsfit_fitter *f, const double *pts, size_t m, int dim, const double *u,
+                        const double *w, bsfit_curve *out, double *rc, bsfit_status *st) {
+  bsfit__fixed_set fx;
+  int badw;
+  bsfit_err e;
+  bsfit__fit_fixed(f, pts, m, dim, &fx); /* periodic fits have no constraints: lo..hi all */
+  e = bsfit__qr_factor(f, pts, m, dim, u, w, &fx, &badw, st);
+  if (e != BSFIT_OK) return e;
+  if (badw || !bsfit__qr_finite(f, dim)) return input_error(pts, m, dim, u, w, st);
+  if (all_coincide(pts, m, dim))
+    return bsfit__fail(st, BSFIT_EDEGENERATE, "all %zu points coincide", m);
+  e = prepare_out(f, dim, out, st);
+  if (e == BSFIT_OK) e = bsfit__qr_solve(f, dim, &fx, out->ctrl, rc, st);
+  if (e != BSFIT_OK) return empty_span_error(f, e, st, NULL, NULL);
+  wrap_ctrl(f, dim, out);
+  return solution_finite(f, dim, out, st);
+}
+
+/* BSFIT_SOLVER_AUTO: does the Cholesky result call for QR? */
+static int needs_qr(bsfit_err e, double rcond) {
+  return e == BSFIT_ENOTSPD || e == BSFIT_ESINGULAR ||
+         (e == BSFIT_OK && rcond < BSFIT_SOLVER_AUTO_RCOND);
+}
+
 static bsfit_err fit_body(bsfit_fitter *f, const double *pts, size_t m, int dim, const double *u,
                           const double *w, bsfit_curve *out, bsfit_fit_report *rep,
                           double *res, bsfit_status *st) {
-  double rms, max;
+  double rms, max, rcond = 1.0;
+  double *rc = rep || f->solver == BSFIT_SOLVER_AUTO ? &rcond : NULL;
+  bsfit_solver used = f->solver == BSFIT_SOLVER_QR ? BSFIT_SOLVER_QR : BSFIT_SOLVER_CHOLESKY;
   size_t imax;
   bsfit_err e = place_fit_knots(f, u, m, st);
-  if (e == BSFIT_OK) e = assemble_checked(f, pts, m, dim, u, w, st);
-  if (e == BSFIT_OK) e = prepare_out(f, dim, out, st);
-  if (e == BSFIT_OK) e = fit_solve(f, pts, m, dim, out, rep, st);
   if (e != BSFIT_OK) return e;
-  if (!bsfit__all_finite(out->ctrl, f->nraw * (size_t)dim))
-    return bsfit__fail(st, BSFIT_ESINGULAR, "the solution is not finite: the normal matrix is "
-                       "numerically singular");
+  if (used == BSFIT_SOLVER_CHOLESKY) e = fit_cholesky(f, pts, m, dim, u, w, out, rc, st);
+  if (f->solver == BSFIT_SOLVER_AUTO && needs_qr(e, rcond)) used = BSFIT_SOLVER_QR;
+  if (used == BSFIT_SOLVER_QR) e = fit_qr(f, pts, m, dim, u, w, out, rc, st);
+  if (e != BSFIT_OK) return e;
   memcpy(out->knots, f->U, f->nk * sizeof(double));
   out->periodic = f->periodic;
+  if (rep) {
+    rep->rcond = rcond;
+    rep->solver = used;
+  }
   if (rep == NULL && res == NULL) return bsfit__ok(st); /* nobody reads the residuals */
   bsfit__fit_residuals(f, out->ctrl, pts, m, dim, u, w, res, &rms, &max, &imax);
   if (rep) {

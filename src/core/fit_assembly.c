@@ -182,14 +182,6 @@ FIT_INLINE size_t next_span(const double *U, size_t n, int p, size_t s, double x
   return bsfit_knots_find_span(U, n, p, x);
 }
 
-FIT_INLINE double wrap_param(double x, double a, double b) {
-  double T = b - a, v;
-  if (x >= a && x < b) return x;
-  v = a + fmod(x - a, T);
-  if (v < a) v += T;
-  return v >= b ? a : v;
-}
-
 /* The next group of consecutive points in one span: its span and bounds. A NaN parameter
 ** forms a group of its own (no comparison holds), and poisons the sums as it should. */
 typedef struct span_walk {
@@ -211,7 +203,7 @@ FIT_INLINE void walk_init(span_walk *sw, const bsfit_fitter *f) {
 }
 
 FIT_INLINE double walk_param(const span_walk *sw, const double *u, size_t k) {
-  return sw->periodic ? wrap_param(u[k], sw->a, sw->b) : u[k];
+  return sw->periodic ? bsfit__wrap_param(u[k], sw->a, sw->b) : u[k];
 }
 
 FIT_INLINE void walk_to(span_walk *sw, double x, double *lo, double *hi) {

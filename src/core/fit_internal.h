@@ -10,6 +10,8 @@
 
 #include "internal.h"
 
+#include <math.h>
+
 /* {====================================================================
 ** linalg.c: column-major LAPACK wrappers; every `info` goes through bsfit__lapack_status
 ** ===================================================================== */
@@ -32,6 +34,15 @@ bsfit_err bsfit__pb_solve(size_t n, int kd, const double *ab, size_t ldab, size_
 ** principal submatrices (fixed ends eliminated). Periodic normal matrices are not. */
 double bsfit__pb_rcond_tn(size_t n, int kd, const double *ab, size_t ldab, double anorm,
                           double *work);
+/* Triangular band solve (dtbtrs): `lower` band storage AB[(i-j) + j*ldab] of a lower
+** triangle L with kd sub-diagonals, solving L x = b (trans 0) or L^T x = b (trans 1).
+** A zero diagonal entry gives BSFIT_ESINGULAR. */
+bsfit_err bsfit__tb_solve(size_t n, int kd, int trans, const double *ab, size_t ldab,
+                          size_t nrhs, double *b, size_t ldb, bsfit_status *st);
+/* Dense triangular solve (dtrtrs), upper triangle of column-major a: U x = b (trans 0) or
+** U^T x = b (trans 1). A zero diagonal entry gives BSFIT_ESINGULAR. */
+bsfit_err bsfit__tr_solve(size_t n, int trans, const double *a, size_t lda, size_t nrhs,
+                          double *b, size_t ldb, bsfit_status *st);
 /* Dense symmetric positive definite, lower, column-major. */
 bsfit_err bsfit__po_factor(size_t n, double *a, size_t lda, bsfit_status *st);
 bsfit_err bsfit__po_solve(size_t n, const double *a, size_t lda, size_t nrhs, double *b,
@@ -69,6 +80,7 @@ struct bsfit_fitter {
   bsfit_allocator alloc;
   /* settings */
   int p, periodic, fix_ends, has_t0, has_t1, tangent_dim, user_knots;
+  bsfit_solver solver;
   bsfit_knot_rule rule;
   size_t count; /* n (open) or N (periodic) */
   double t0[4], t1[4];
@@ -94,7 +106,47 @@ struct bsfit_fitter {
   double *r2;     /* periodic: N * 4 folded right-hand sides */
   int *iwork;     /* nraw */
   unsigned char *occ; /* nraw spans touched by data */
+  /* QR solver (fit_qr.c): the order in which points enter when their parameters are out
+  ** of order, grown on demand (its own allocation: it scales with m, not with the count) */
+  size_t *order;
+  size_t order_cap;
+  size_t qr_nb; /* band unknowns of the last QR factorisation */
+  int qr_q;     /* border unknowns (periodic: p) */
 };
+
+/* The control points an open fit's constraints fix (fit.c): index -> coordinates. */
+typedef struct bsfit__fixed_set {
+  size_t idx[4];
+  double val[4][4];
+  size_t count, lo, hi; /* free unknowns lo..hi-1 (empty when count covers all) */
+} bsfit__fixed_set;
+
+void bsfit__fit_fixed(const bsfit_fitter *f, const double *pts, size_t m, int dim,
+                      bsfit__fixed_set *fx);
+
+/* fit_qr.c: Givens QR of the weighted collocation rows, row by row, into the banded upper
+** triangle R (stored in f->band as the lower band of R^T), its border (f->a12, periodic),
+** R22 (f->s22) and the rotated right-hand sides (f->rhs); marks occupied spans. Returns
+** BSFIT_ENOMEM (order array) or BSFIT_OK; *badw is set when a weight is <= 0 or NaN;
+** other non-finite input shows up as non-finite entries of R or the right-hand sides. */
+bsfit_err bsfit__qr_factor(bsfit_fitter *f, const double *pts, size_t m, int dim,
+                           const double *u, const double *w, const bsfit__fixed_set *fx,
+                           int *badw, bsfit_status *st);
+/* Non-zero when every entry of the last QR factorisation is finite. */
+int bsfit__qr_finite(const bsfit_fitter *f, int dim);
+/* Back substitution: the free unknowns into ctrl (row-major; open: rows lo..hi-1 of fx,
+** periodic: the N distinct control points), *rcond when rcond != NULL. */
+bsfit_err bsfit__qr_solve(bsfit_fitter *f, int dim, const bsfit__fixed_set *fx, double *ctrl,
+                          double *rcond, bsfit_status *st);
+
+/* x taken into the period [a, b) of a periodic fit (the assembly's and the QR's rule). */
+static inline double bsfit__wrap_param(double x, double a, double b) {
+  double T = b - a, v;
+  if (x >= a && x < b) return x;
+  v = a + fmod(x - a, T);
+  if (v < a) v += T;
+  return v >= b ? a : v;
+}
 
 /* fit_assembly.c: the passes over the points, span by span. */
 /* Doubles per span in `poly` (degrees 1..3: the basis functions' power coefficients, then

@@ -1,7 +1,8 @@
 /*
 ** linalg.c
-** The only file that calls LAPACKE: banded and dense Cholesky, condition estimates and
-** banded LU, column-major, through the *_work entry points so that no call allocates.
+** The only file that calls LAPACKE: banded and dense Cholesky, triangular (band) solves,
+** condition estimates and banded LU, column-major, through the *_work entry points so that
+** no call allocates.
 ** LAPACK's `info` is turned into a bsfit_err in one function, bsfit__lapack_status.
 */
 #define _GNU_SOURCE /* RTLD_DEFAULT */
@@ -52,6 +53,24 @@ bsfit_err bsfit__pb_solve(size_t n, int kd, const double *ab, size_t ldab, size_
                                                   (lapack_int)nrhs, ab, (lapack_int)ldab, b,
                                                   (lapack_int)ldb),
                               "dpbtrs", 1, st);
+}
+
+bsfit_err bsfit__tb_solve(size_t n, int kd, int trans, const double *ab, size_t ldab,
+                          size_t nrhs, double *b, size_t ldb, bsfit_status *st) {
+  if (!fits_int(n, ldab, nrhs) || !fits_int(ldb, 0, 0)) return too_big("dtbtrs", st);
+  return bsfit__lapack_status(LAPACKE_dtbtrs_work(LAPACK_COL_MAJOR, 'L', trans ? 'T' : 'N', 'N',
+                                                  (lapack_int)n, kd, (lapack_int)nrhs, ab,
+                                                  (lapack_int)ldab, b, (lapack_int)ldb),
+                              "dtbtrs", 0, st);
+}
+
+bsfit_err bsfit__tr_solve(size_t n, int trans, const double *a, size_t lda, size_t nrhs,
+                          double *b, size_t ldb, bsfit_status *st) {
+  if (!fits_int(n, lda, nrhs) || !fits_int(ldb, 0, 0)) return too_big("dtrtrs", st);
+  return bsfit__lapack_status(LAPACKE_dtrtrs_work(LAPACK_COL_MAJOR, 'U', trans ? 'T' : 'N', 'N',
+                                                  (lapack_int)n, (lapack_int)nrhs, a,
+                                                  (lapack_int)lda, b, (lapack_int)ldb),
+                              "dtrtrs", 0, st);
 }
 
 /* For a totally nonnegative A (an open fit's normal matrix: see fit_internal.h) the

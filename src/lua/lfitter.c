@@ -41,6 +41,9 @@ static const bsfit_knot_rule rule_values[] = {
   BSFIT_KNOTS_AVERAGING, BSFIT_KNOTS_CARVALHO_CLOSED, BSFIT_KNOTS_PERIODIC_AVERAGING,
   BSFIT_KNOTS_UNIFORM, BSFIT_KNOTS_PERIODIC_UNIFORM};
 
+/* bsfit_solver values in order */
+static const char *const solver_names[] = {"cholesky", "qr", "auto", NULL};
+
 /* field `k` as a tangent {dx, dy[, dz]} into T (4 doubles); returns its length or 0 */
 static int opt_tangent(lua_State *L, int t, const char *k, double *T) {
   int n = 0, i;
@@ -96,10 +99,10 @@ static void knots_setting(lua_State *L, int t, bsfit_fit_opts *o) {
 ** tangents. Raises on misuse. */
 static void read_settings(lua_State *L, int t, bsfit_fit_opts *o, double *T0, double *T1) {
   static const char *const opts[] = {"degree", "count", "knots", "periodic", "fix_ends", "rule",
-                                     "tangent_start", "tangent_end", NULL};
+                                     "tangent_start", "tangent_end", "solver", NULL};
   lua_Integer p, n;
   int n0, n1;
-  const char *rule;
+  const char *rule, *solver;
   size_t r;
   bsfit__lua_check_options(L, t, opts);
   bsfit_fit_opts_init(o);
@@ -118,6 +121,11 @@ static void read_settings(lua_State *L, int t, bsfit_fit_opts *o, double *T0, do
   if (rule_names[r] == NULL)
     luaL_argerror(L, t, lua_pushfstring(L, "field 'rule': invalid option '%s'", rule));
   o->rule = rule_values[r];
+  solver = opt_string(L, t, "solver", "cholesky");
+  for (r = 0; solver_names[r] != NULL && strcmp(solver_names[r], solver) != 0; r++) continue;
+  if (solver_names[r] == NULL)
+    luaL_argerror(L, t, lua_pushfstring(L, "field 'solver': invalid option '%s'", solver));
+  o->solver = (bsfit_solver)r;
   knots_setting(L, t, o);
   if (o->count == 0) luaL_argerror(L, t, "field 'count' (or 'knots') is required");
   n0 = opt_tangent(L, t, "tangent_start", T0);
@@ -135,7 +143,7 @@ static void remember(fitter_ud *F, const bsfit_fit_opts *o) {
 }
 
 /* bs.fitter{degree =, count =, knots =, periodic =, fix_ends =, rule =, tangent_start =,
-** tangent_end =} --> Fitter */
+** tangent_end =, solver =} --> Fitter */
 static int fitter_new(lua_State *L) {
   bsfit_fit_opts o;
   double T0[4], T1[4];
@@ -183,7 +191,7 @@ static int fitter_configure(lua_State *L) {
 static int fit_arg(bsfit_err e) { return e == BSFIT_EWEIGHT ? 4 : 2; }
 
 static void push_report(lua_State *L, const bsfit_fit_report *rep, int resid) {
-  lua_createtable(L, 0, 8);
+  lua_createtable(L, 0, 9);
   lua_pushnumber(L, rep->rms);
   lua_setfield(L, -2, "rms");
   lua_pushnumber(L, rep->max);
@@ -196,6 +204,8 @@ static void push_report(lua_State *L, const bsfit_fit_report *rep, int resid) {
   lua_setfield(L, -2, "empty_spans");
   lua_pushinteger(L, (lua_Integer)rep->m);
   lua_setfield(L, -2, "m");
+  lua_pushstring(L, solver_names[rep->solver]);
+  lua_setfield(L, -2, "solver");
   lua_pushvalue(L, resid);
   lua_setfield(L, -2, "residuals");
 }

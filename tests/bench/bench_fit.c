@@ -2,7 +2,8 @@
 ** bench_fit.c
 ** Timing of the weighted least-squares fitter: 10^6 2D points / 2000 cubic control
 ** points (open and periodic, assembly + solve + residuals), 1000 points / 100 control
-** points with a reused fitter, the growth with m, and the peak memory of the big fit.
+** points with a reused fitter, the same with the QR solver, the growth with m, and the peak
+** memory of the big fit.
 ** Times are CPU time of the process (best of `repeats`), so a loaded machine inflates them
 ** less than wall time would. Usage: bench_fit [repeats]   (short by design)
 */
@@ -55,8 +56,8 @@ static int make_data(size_t m, int closed, double *pts, double *u, double *w) {
 }
 
 /* best time of `reps` fits (seconds); -1 on error */
-static double time_fit(size_t m, size_t count, int periodic, int reps, const bsfit_allocator *al,
-                       bsfit_fit_report *rep) {
+static double time_fit(size_t m, size_t count, int periodic, bsfit_solver solver, int reps,
+                       const bsfit_allocator *al, bsfit_fit_report *rep) {
   double *pts = malloc(2 * m * sizeof(double)), *u = malloc(m * sizeof(double));
   double *w = malloc(m * sizeof(double)), *res = malloc(m * sizeof(double)), best = 1e30;
   bsfit_fit_opts o;
@@ -69,6 +70,7 @@ static double time_fit(size_t m, size_t count, int periodic, int reps, const bsf
   bsfit_fit_opts_init(&o);
   o.count = count;
   o.periodic = periodic;
+  o.solver = solver;
   if (best > 0 && bsfit_fitter_new(&f, &o, al, &st) != BSFIT_OK) {
     fprintf(stderr, "fitter: %s\n", st.msg);
     best = -1;
@@ -95,29 +97,38 @@ int main(int argc, char **argv) {
   (void)bsfit_blas_single_thread(); /* see bsfit_fit.h: idle BLAS workers spin */
   int reps = argc > 1 ? atoi(argv[1]) : 5;
   size_t m;
-  double t_open, t_per, t_small;
+  double t_open, t_per, t_small, t;
   bsfit_fit_report rep;
   peak_alloc pa = {0, 0};
   bsfit_allocator al = {peak_fn, &pa};
   struct rusage ru;
   if (reps < 1) reps = 1;
 
-  t_open = time_fit(1000000, 2000, 0, reps, &al, &rep);
+  t_open = time_fit(1000000, 2000, 0, BSFIT_SOLVER_CHOLESKY, reps, &al, &rep);
   printf("open     m=1e6 n=2000 cubic weighted: %8.2f ms  (rms %.3g, max %.3g, rcond %.2g)\n",
          1e3 * t_open, rep.rms, rep.max, rep.rcond);
-  t_per = time_fit(1000000, 2000, 1, reps, &al, &rep);
+  t_per = time_fit(1000000, 2000, 1, BSFIT_SOLVER_CHOLESKY, reps, &al, &rep);
   printf("periodic m=1e6 N=2000 cubic weighted: %8.2f ms  (rms %.3g, max %.3g, rcond %.2g)"
          "  ratio %.2f\n", 1e3 * t_per, rep.rms, rep.max, rep.rcond, t_per / t_open);
-  t_small = time_fit(1000, 100, 0, 200 * reps, NULL, &rep);
+  t_small = time_fit(1000, 100, 0, BSFIT_SOLVER_CHOLESKY, 200 * reps, NULL, &rep);
   printf("open     m=1e3 n=100 reused fitter:   %8.2f us per fit\n", 1e6 * t_small);
-  t_small = time_fit(1000, 100, 0, 200 * reps, NULL, NULL);
+  t_small = time_fit(1000, 100, 0, BSFIT_SOLVER_CHOLESKY, 200 * reps, NULL, NULL);
   printf("open     m=1e3 n=100, no report:      %8.2f us per fit (no residual pass, no rcond)\n",
          1e6 * t_small);
-  t_small = time_fit(1000, 100, 1, 200 * reps, NULL, &rep);
+  t_small = time_fit(1000, 100, 1, BSFIT_SOLVER_CHOLESKY, 200 * reps, NULL, &rep);
   printf("periodic m=1e3 N=100 reused fitter:   %8.2f us per fit\n", 1e6 * t_small);
+  printf("QR solver (solver = BSFIT_SOLVER_QR), with the full report:\n");
+  t = time_fit(1000000, 2000, 0, BSFIT_SOLVER_QR, reps, NULL, &rep);
+  printf("  open     m=1e6 n=2000: %8.2f ms (%.2fx Cholesky)\n", 1e3 * t, t / t_open);
+  t = time_fit(1000000, 2000, 1, BSFIT_SOLVER_QR, reps, NULL, &rep);
+  printf("  periodic m=1e6 N=2000: %8.2f ms (%.2fx Cholesky)\n", 1e3 * t, t / t_per);
+  t = time_fit(1000, 100, 0, BSFIT_SOLVER_QR, 200 * reps, NULL, &rep);
+  printf("  open     m=1e3 n=100:  %8.2f us per fit\n", 1e6 * t);
+  t = time_fit(1000, 100, 1, BSFIT_SOLVER_QR, 200 * reps, NULL, &rep);
+  printf("  periodic m=1e3 N=100:  %8.2f us per fit\n", 1e6 * t);
   printf("growth (open, n=100, cubic):\n");
   for (m = 1000; m <= 1000000; m *= 10) {
-    double t = time_fit(m, 100, 0, m < 100000 ? 50 * reps : reps, NULL, &rep);
+    t = time_fit(m, 100, 0, BSFIT_SOLVER_CHOLESKY, m < 100000 ? 50 * reps : reps, NULL, &rep);
     printf("  m=%8zu  %10.3f ms  %6.2f ns/point\n", m, 1e3 * t, 1e9 * t / (double)m);
   }
   getrusage(RUSAGE_SELF, &ru);

@@ -16,6 +16,7 @@
 
 #include "bsfit.h"
 #include "testutil.h"
+#include "fit_solvers.h"
 
 #define EPS_REPRO 1e-10 /* reproduction of a spline from the same space */
 #define EPS_DENSE 1e-9  /* against the dense normal equations */
@@ -141,7 +142,7 @@ static void test_reproduces_spline_same_space(void **state) {
       sorted_params(&r, m, a, b, u);
       sample(&src, u, m, pts);
       for (k = 0; k < m; k++) w[k] = rng_range(&r, 0.1, 10.0);
-      bsfit_fit_opts_init(&o);
+      opts_init(&o);
       o.degree = p;
       o.count = n;
       o.knots = U;
@@ -178,7 +179,7 @@ static void test_matches_dense_normal_equations(void **state) {
     bsfit_curve out;
     size_t nk;
     const double *U;
-    bsfit_fit_opts_init(&o);
+    opts_init(&o);
     o.degree = p;
     o.count = n;
     bsfit_curve_init(&out);
@@ -259,7 +260,7 @@ static void test_rcond_is_exact(void **state) {
         } else {
           memcpy(spts, pts, sizeof pts), memcpy(su, u, sizeof u), memcpy(sw, w, sizeof w);
         }
-        bsfit_fit_opts_init(&o);
+        opts_init(&o);
         o.degree = p;
         o.count = n;
         o.fix_ends = fixed;
@@ -298,7 +299,7 @@ static void test_weight_pulls_curve(void **state) {
   (void)state;
   noisy_curve(&r, m, pts, u, w);
   for (k = 0; k < m; k++) pts[2 * k + 1] += (k % 5 == 0) ? 0.2 : 0.0; /* outliers */
-  bsfit_fit_opts_init(&o);
+  opts_init(&o);
   o.count = 8;
   bsfit_curve_init(&out);
   assert_int_equal(bsfit_fitter_new(&f, &o, NULL, NULL), BSFIT_OK);
@@ -329,7 +330,7 @@ static void test_fixed_ends_and_tangents(void **state) {
   (void)state;
   noisy_curve(&r, m, pts, u, w);
   bsfit_curve_init(&out);
-  bsfit_fit_opts_init(&o);
+  opts_init(&o);
   o.count = 10;
   /* unconstrained reference: its weighted error can only be lower */
   assert_int_equal(bsfit_fitter_new(&f, &o, NULL, NULL), BSFIT_OK);
@@ -410,7 +411,7 @@ static void test_constraints_keep_exact_spline(void **state) {
     T1[0] += ders[4 + k] * ctrl[(s - 3 + k) * 2];
     T1[1] += ders[4 + k] * ctrl[(s - 3 + k) * 2 + 1];
   }
-  bsfit_fit_opts_init(&o);
+  opts_init(&o);
   o.count = n;
   o.knots = U;
   o.nknots = 13;
@@ -436,7 +437,7 @@ static void test_report_matches_residuals(void **state) {
   bsfit_fit_report rep;
   (void)state;
   noisy_curve(&r, m, pts, u, w);
-  bsfit_fit_opts_init(&o);
+  opts_init(&o);
   o.count = 9;
   bsfit_curve_init(&out);
   assert_int_equal(bsfit_fitter_new(&f, &o, NULL, NULL), BSFIT_OK);
@@ -471,7 +472,7 @@ static void test_invalid_inputs(void **state) {
   (void)state;
   noisy_curve(&r, m, pts, u, w);
   bsfit_curve_init(&out);
-  bsfit_fit_opts_init(&o);
+  opts_init(&o);
   /* fitter settings */
   o.count = 3;
   expect_error(bsfit_fitter_new(&f, &o, NULL, &st), BSFIT_EDEGREE, &st); /* degree >= count */
@@ -501,7 +502,7 @@ static void test_invalid_inputs(void **state) {
   {
     /* unclamped fixed knots with fixed ends; wrong knot count; decreasing knots */
     double U[12];
-    bsfit_fit_opts_init(&o);
+    opts_init(&o);
     o.count = 8;
     o.fix_ends = 1;
     for (k = 0; k < 12; k++) U[k] = (double)k;
@@ -515,7 +516,7 @@ static void test_invalid_inputs(void **state) {
     U[5] = 1.0;
     expect_error(bsfit_fitter_new(&f, &o, NULL, &st), BSFIT_EKNOTS_DECR, &st);
   }
-  bsfit_fit_opts_init(&o);
+  opts_init(&o);
   o.count = 8;
   o.tangent_start = w;
   o.tangent_dim = 3;
@@ -579,7 +580,7 @@ static void test_empty_span_is_reported(void **state) {
     pts[2 * k + 1] = u[k] * u[k];
     w[k] = 1.0;
   }
-  bsfit_fit_opts_init(&o);
+  opts_init(&o);
   o.degree = 1;
   o.count = 4;
   o.knots = U;
@@ -620,7 +621,7 @@ static void test_reused_fitter_matches_fresh(void **state) {
       assert_int_equal(bsfit_params(pts, m, 2, kinds[i], periodic, u[i], NULL), BSFIT_OK);
     memcpy(bad, u[0], sizeof bad);
     bad[50] = bad[10]; /* decreasing: the knot placement rejects it */
-    bsfit_fit_opts_init(&o);
+    opts_init(&o);
     o.count = 12;
     o.periodic = periodic;
     bsfit_curve_init(&out);
@@ -659,7 +660,7 @@ static void test_reconfigure_and_reuse(void **state) {
   (void)state;
   noisy_curve(&r, m, pts, u, w);
   bsfit_curve_init(&out);
-  bsfit_fit_opts_init(&o);
+  opts_init(&o);
   o.count = 10;
   assert_int_equal(bsfit_fitter_new(&f, &o, &al, &st), BSFIT_OK);
   assert_int_equal(bsfit_fitter_fit(f, pts, m, 2, u, w, &out, NULL, NULL, &st), BSFIT_OK);
@@ -704,7 +705,7 @@ static void test_allocation_failures(void **state) {
     bsfit_fitter *f = NULL;
     bsfit_curve out;
     bsfit_err e;
-    bsfit_fit_opts_init(&o);
+    opts_init(&o);
     o.count = 9;
     bsfit_curve_init(&out);
     e = bsfit_fitter_new(&f, &o, &al, NULL);
@@ -778,5 +779,5 @@ int main(void) {
     cmocka_unit_test(test_allocation_failures),
     cmocka_unit_test(test_interpolation_open),
   };
-  return cmocka_run_group_tests(tests, NULL, NULL);
+  return run_with_each_solver(tests);
 }

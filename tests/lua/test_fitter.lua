@@ -167,6 +167,29 @@ T.test("F:fit writes the residuals into a caller's Vector when given one", funct
   T.raises({ match = "bad argument #4 to 'fit' %(bsfit.Vector expected" }, function() F:fit(P, u, nil, {}) end)
 end)
 
+T.test("solver = 'qr' | 'auto' solve the same problem; the report names the solver used", function()
+  local m = 60
+  local P = bs.points.new(m, 2)
+  for k = 1, m do local a = 2 * math.pi * k / m; P:set(k, 2 * math.cos(a) + 0.01 * math.sin(5 * k), math.sin(a)) end
+  local u = bs.params(P, "chord", {closed = true})
+  for _, periodic in ipairs{false, true} do
+    local C1, r1 = bs.fitter{count = 12, periodic = periodic}:fit(P, u)
+    local C2, r2 = bs.fitter{count = 12, periodic = periodic, solver = "qr"}:fit(P, u)
+    local C3, r3 = bs.fitter{count = 12, periodic = periodic, solver = "auto"}:fit(P, u)
+    T.eq(r1.solver, "cholesky"); T.eq(r2.solver, "qr"); T.eq(r3.solver, "cholesky", "well conditioned")
+    local A, B = C1:control_points(), C2:control_points()
+    for i = 1, #A do
+      local ax, ay = A:get(i)
+      local bx, by = B:get(i)
+      T.near(ax, bx, 1e-11, "x" .. i); T.near(ay, by, 1e-11, "y" .. i)
+    end
+    T.near(r1.rms, r2.rms, 1e-13)
+    T.ok(C3)
+  end
+  T.raises("bad argument #1 to 'fitter' (field 'solver': invalid option 'lu')",
+           function() bs.fitter{count = 5, solver = "lu"} end)
+end)
+
 T.test("a knot span without data gives nil, message, 'EEMPTYSPAN'", function()
   local K = bs.knots.clamped{degree = 3, count = 8}
   local F = bs.fitter{degree = 3, knots = K}

@@ -53,7 +53,7 @@ local function vector(v) return numbers(v:totable()) end
 local cases = {}
 
 -- fit one case and record everything the checker needs
-local function record(name, settings, P, u, w)
+local function record_one(name, settings, P, u, w)
   local F = bs.fitter(settings)
   local r = bs.vector.new(#P)
   local C, rep = F:fit(P, u, w, r)
@@ -67,6 +67,17 @@ local function record(name, settings, P, u, w)
     name, C:degree(), tostring(C:is_periodic()), tostring(settings.fix_ends or false), tan, tan1,
     vector(u), rows(P), vector(w), numbers(C:knots():values()), rows(C:control_points()),
     vector(r), rep.rms, rep.max, rep.max_index, rep.rcond)
+  assert(rep.solver == settings.solver, rep.solver)
+  return C
+end
+
+-- every case by both solvers: the same problem, the same minimum
+local function record(name, settings, P, u, w)
+  local C
+  for _, solver in ipairs{"qr", "cholesky"} do
+    settings.solver = solver
+    C = record_one(name .. " [" .. solver .. "]", settings, P, u, w)
+  end
   return C
 end
 

@@ -53,8 +53,9 @@ def fixed_unknowns(c, t, p, n, Q):
     return fixed
 
 
-def reference_ctrl(c, t, p, Q, u, w):
-    """The independent weighted least-squares control points (distinct ones for periodic)."""
+def reference_fit(c, t, p, Q, u, w):
+    """The independent weighted least-squares control points (distinct ones for periodic)
+    and the reciprocal 1-norm condition number of the normal matrix of the free unknowns."""
     n_stored = len(c["ctrl"])
     n = n_stored - p if c["periodic"] else n_stored
     A = design(t, p, n_stored, domain_params(t, p, n_stored, u, c["periodic"]), c["periodic"], n)
@@ -69,7 +70,9 @@ def reference_ctrl(c, t, p, Q, u, w):
     P[free] = sol
     for j, val in fixed.items():
         P[j] = val
-    return P
+    M = (A[:, free] * w[:, None]).T @ A[:, free]
+    rcond = 1.0 / (np.abs(M).sum(0).max() * np.abs(np.linalg.inv(M)).sum(0).max())
+    return P, rcond
 
 
 def check(c):
@@ -88,7 +91,7 @@ def check(c):
         spans, N = np.diff(t), n_stored - p   # span i + N repeats span i
         if np.abs(spans[N:] - spans[: len(spans) - N]).max() > 1e-13 * (t[-1] - t[0]):
             errors.append("expanded knot spans do not repeat with the period")
-    ref = reference_ctrl(c, t, p, Q, u, w)
+    ref, rcond = reference_fit(c, t, p, Q, u, w)
     mine = ctrl[: len(ref)]
     err = np.abs(mine - ref).max() / size
     if err > COEF_TOL:
@@ -123,6 +126,14 @@ def check(c):
     if c["fix_ends"] or c["tangent_start"] is not None:
         if np.abs(curve(t[p]) - Q[0]).max() > 1e-12 * size:
             errors.append("the curve does not start at Q_0")
+    # rcond: exact for open fits inside the domain (the normal matrix is totally
+    # nonnegative); periodic ones an estimate from above, within the estimators' factor
+    inside = t[p] <= u.min() and u.max() <= t[n_stored]
+    ratio = c["rcond"] / rcond
+    if not c["periodic"] and inside and abs(ratio - 1) > 1e-6:
+        errors.append("rcond %.6g, exact %.6g" % (c["rcond"], rcond))
+    if c["periodic"] and not (1 - 1e-9 <= ratio <= 3):
+        errors.append("rcond %.6g, exact %.6g: not an estimate from above within 3x" % (c["rcond"], rcond))
     if not (0 < c["rcond"] <= 1):
         errors.append("rcond %g out of (0, 1]" % c["rcond"])
     return errors
