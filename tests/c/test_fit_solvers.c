@@ -96,7 +96,7 @@ static void test_qr_keeps_the_accuracy_cholesky_loses(void **state) {
 static void test_auto_keeps_cholesky_when_well_conditioned(void **state) {
   test_rng r = {31};
   enum { m = 200 };
-  double pts[m * 2], u[m], w[m], a[20 * 2], b[20 * 2];
+  double pts[m * 2], u[m], w[m], a[(20 + 3) * 2], b[(20 + 3) * 2]; /* expanded form: N + p */
   bsfit_fit_opts o;
   bsfit_fit_report ra, rb;
   size_t k;
