@@ -101,7 +101,7 @@ struct bsfit_fitter {
   double *work;   /* 3 * nraw */
   double *a11;    /* periodic: (p+1) * (N-p) */
   double *a12;    /* periodic: (N-p) * p */
-  double *y;      /* periodic: (N-p) * p */
+  double *y;      /* periodic: (N-p) * p, Z = L^-1 A12 of the block elimination */
   double *s22;    /* periodic: p * p */
   double *r2;     /* periodic: N * 4 folded right-hand sides */
   int *iwork;     /* nraw */

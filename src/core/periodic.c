@@ -5,10 +5,11 @@
 ** exactly as an open fit does; here the wrapped unknowns are folded onto their originals
 ** (P_{N+i} = P_i), which gives a banded matrix plus p x p wrap-around corners, and the
 ** cyclic system is solved by block elimination of the last p unknowns:
-**   [A11 A12; A12^T A22] [x1; x2] = [b1; b2],  A11 banded (N-p unknowns),
-**   S = A22 - A12^T A11^-1 A12 (p x p),  x2 = S^-1 (b2 - A12^T A11^-1 b1),
-**   x1 = A11^-1 b1 - (A11^-1 A12) x2,
-** one banded Cholesky of A11 and a dense p x p Cholesky: O(N p^2), never a dense N x N.
+**   [A11 A12; A12^T A22] [x1; x2] = [b1; b2],  A11 = L L^T banded (N-p unknowns),
+**   Z = L^-1 A12, z = L^-1 b1,  S = A22 - Z^T Z (p x p),  x2 = S^-1 (b2 - Z^T z),
+**   x1 = L^-T (z - Z x2),
+** one banded Cholesky of A11, forward substitutions for Z and z, one backward for x1 and a
+** dense p x p Cholesky: O(N p^2), never a dense N x N.
 */
 #include "fit_internal.h"
 
@@ -64,13 +65,13 @@ static double folded_norm1(const bsfit_fitter *f, double *colsum) {
   return mx;
 }
 
-/* S = A22 - A12^T Y (lower triangle), Y = A11^-1 A12. */
+/* S = A22 - Z^T Z (lower triangle), Z = L^-1 A12 in f->y. */
 static void schur(bsfit_fitter *f) {
   size_t p = (size_t)f->p, n1 = f->count - p, i, j, k;
   for (j = 0; j < p; j++)
     for (i = j; i < p; i++) {
       double s = 0.0;
-      for (k = 0; k < n1; k++) s += f->a12[k + i * n1] * f->y[k + j * n1];
+      for (k = 0; k < n1; k++) s += f->y[k + i * n1] * f->y[k + j * n1];
       f->s22[i + j * p] -= s;
     }
 }
@@ -85,31 +86,32 @@ bsfit_err bsfit__periodic_solve(bsfit_fitter *f, int dim, double *ctrl, double *
   if (rcond) anorm = folded_norm1(f, f->work);
   e = bsfit__pb_factor(n1, kd, f->a11, p + 1, st);
   if (e != BSFIT_OK) return e;
-  memcpy(f->y, f->a12, n1 * p * sizeof(double));
-  e = bsfit__pb_solve(n1, kd, f->a11, p + 1, p, f->y, n1, st);
+  memcpy(f->y, f->a12, n1 * p * sizeof(double)); /* Z = L^-1 A12 */
+  e = bsfit__tb_solve(n1, kd, 0, f->a11, p + 1, p, f->y, n1, st);
   if (e != BSFIT_OK) return e;
   schur(f);
   e = bsfit__po_factor(p, f->s22, p, st);
   if (e != BSFIT_OK) return e;
-  /* z1 = A11^-1 b1 in place, then t = b2 - A12^T z1 */
-  e = bsfit__pb_solve(n1, kd, f->a11, p + 1, d, f->r2, N, st);
+  /* z = L^-1 b1 in place, then t = b2 - Z^T z */
+  e = bsfit__tb_solve(n1, kd, 0, f->a11, p + 1, d, f->r2, N, st);
   if (e != BSFIT_OK) return e;
   for (k = 0; k < d; k++)
     for (j = 0; j < p; j++) {
       double s = f->r2[k * N + n1 + j];
-      for (i = 0; i < n1; i++) s -= f->a12[i + j * n1] * f->r2[k * N + i];
+      for (i = 0; i < n1; i++) s -= f->y[i + j * n1] * f->r2[k * N + i];
       t[k * p + j] = s;
     }
   e = bsfit__po_solve(p, f->s22, p, d, t, p, st);
   if (e != BSFIT_OK) return e;
-  for (k = 0; k < d; k++) {
-    for (i = 0; i < n1; i++) {
-      double s = f->r2[k * N + i];
-      for (j = 0; j < p; j++) s -= f->y[i + j * n1] * t[k * p + j];
-      ctrl[i * d + k] = s;
-    }
+  for (k = 0; k < d; k++) { /* z - Z x2, then x1 = L^-T (z - Z x2) */
+    for (i = 0; i < n1; i++)
+      for (j = 0; j < p; j++) f->r2[k * N + i] -= f->y[i + j * n1] * t[k * p + j];
     for (j = 0; j < p; j++) ctrl[(n1 + j) * d + k] = t[k * p + j];
   }
+  e = bsfit__tb_solve(n1, kd, 1, f->a11, p + 1, d, f->r2, N, st);
+  if (e != BSFIT_OK) return e;
+  for (k = 0; k < d; k++)
+    for (i = 0; i < n1; i++) ctrl[i * d + k] = f->r2[k * N + i];
   if (rcond) {
     /* A11 is the Gram matrix of the periodic basis functions 0..N-p-1, none of which
     ** straddles the first knot U[0] (function j lives on [U_j, U_{j+p+1}], j+p+1 <= N):
