@@ -167,7 +167,9 @@ BSFIT_API bsfit_err bsfit_curve_closest(const bsfit_curve *c, const double *P, d
 ** @param[in]  pts  m points, dim doubles each.
 ** @param[out] u    m parameters of the closest points.
 ** @param[out] dist m distances, or NULL.
-** Cost: O(m K) for K = 8 (spans) + 1 samples, plus Newton per point.
+** Cost: K = 8 (spans) + 1 samples, indexed once by a k-d tree (O(K log K)), then about
+** O(log K) per point near the curve to find its nearest sample (a plain scan for small K
+** or few points), plus Newton per point.
 ** @return BSFIT_OK, the codes of bsfit_curve_validate, BSFIT_EINVAL (NULL arrays),
 **         BSFIT_ENONFINITE (a point not finite), BSFIT_ENOMEM. */
 BSFIT_API bsfit_err bsfit_curve_closest_many(const bsfit_curve *c, const double *pts, size_t m,

@@ -258,6 +258,21 @@ static double foot_newton(foot_ctx *F, double u, int iters, double *d2) {
 ** doubles); returns |C(u) - F->P|^2 */
 static double sample_at(foot_ctx *F, double u, double *D) { return foot_eval(F, u, D, 0); }
 
+/* How many of the nk knots U equal v: bsfit_knots_multiplicity's count, found by bisection
+** because the knots of a valid curve do not decrease (the linear count cost O(n) per
+** point, more than the rest of the search on a curve of many spans). */
+static int knot_mult(const double *U, size_t nk, double v) {
+  size_t lo = 0, hi = nk;
+  int m = 0;
+  while (lo < hi) { /* the first knot >= v */
+    size_t mid = lo + (hi - lo) / 2;
+    if (U[mid] < v) lo = mid + 1;
+    else hi = mid;
+  }
+  for (; lo < nk && U[lo] == v; lo++) m++;
+  return m;
+}
+
 /* Newton from the best sample v (step h apart from its neighbours). At a knot where the
 ** curve may turn (multiplicity >= degree: C0 or less) the derivative seen from one side
 ** cannot lead to a foot on the other: there the descent also starts half a sample step
@@ -266,7 +281,7 @@ static double closest_from(foot_ctx *F, double v, double h, double *d2) {
   const bsfit_curve *c = F->c;
   double u = foot_newton(F, v, NEWTON_MAX_ITERS, d2);
   int side;
-  if (bsfit_knots_multiplicity(c->knots, c->n + (size_t)c->degree + 1, v) < c->degree) return u;
+  if (knot_mult(c->knots, c->n + (size_t)c->degree + 1, v) < c->degree) return u;
   for (side = -1; side <= 1; side += 2) {
     double e2, w = v + 0.5 * h * side, x;
     if (w < F->lo || w > F->hi) continue;
@@ -298,7 +313,8 @@ bsfit_err bsfit_curve_closest(const bsfit_curve *c, const double *P, double *u, 
     double h = (c->knots[s + 1] - c->knots[s]) / CLOSEST_SAMPLES;
     for (i = 0; h > 0 && i <= CLOSEST_SAMPLES; i++) {
       double v = c->knots[s] + h * (double)i, dv = sample_at(&F, v, D);
-      if (dv < best) {
+      if (dv < best || hbest == 0.0) { /* the first sample stands even if every distance
+                                        ** overflows, as in bsfit_curve_closest_many */
         best = dv;
         ubest = v;
         hbest = h;
@@ -319,18 +335,22 @@ bsfit_err bsfit_curve_closest(const bsfit_curve *c, const double *P, double *u, 
 }
 
 /* One curve, many points: the same samples, bracket and Newton as bsfit_curve_closest,
-** with the samples evaluated once for all the points. */
+** with the samples evaluated once for all the points, and each point's nearest sample
+** found through a spatial index (nearest_sample.c) that picks exactly the sample the
+** linear scan of bsfit_curve_closest picks, ties included. */
 bsfit_err bsfit_curve_closest_many(const bsfit_curve *c, const double *pts, size_t m, double *u,
                                    double *dist, bsfit_status *st) {
   foot_ctx F;
   double a, b, D[3 * 4], *smp, *par, *step;
-  size_t s, i, k, K = 0, p, d, q, bytes;
+  size_t s, i, k, K = 0, p, d, bytes;
   span_polys sp;
+  bsfit__nearest nn;
   bsfit_err e = bsfit_curve_validate(c, st);
   if (e != BSFIT_OK) return e;
   if (m > 0 && (pts == NULL || u == NULL)) return bsfit__fail(st, BSFIT_EINVAL, "no points or no output");
   if (!bsfit__all_finite(pts, m * (size_t)c->dim))
     return bsfit__fail(st, BSFIT_ENONFINITE, "the points contain NaN or Inf");
+  if (m == 0) return bsfit__ok(st); /* nothing to sample the curve for */
   bsfit_curve_domain(c, &a, &b);
   p = (size_t)c->degree;
   d = (size_t)c->dim;
@@ -352,24 +372,23 @@ bsfit_err bsfit_curve_closest_many(const bsfit_curve *c, const double *pts, size
       memcpy(smp + k * d, D, d * sizeof(double));
     }
   }
+  e = bsfit__nearest_init(&nn, smp, K, d, m, st);
+  if (e != BSFIT_OK) {
+    polys_free(F.poly);
+    bsfit__free(NULL, smp, bytes);
+    return e;
+  }
   for (i = 0; i < m; i++) {
     const double *P = pts + i * d;
-    double best = INFINITY, d2;
-    size_t kb = 0;
-    for (k = 0; k < K; k++) {
-      double dd = 0.0;
-      for (q = 0; q < d; q++) dd += (smp[k * d + q] - P[q]) * (smp[k * d + q] - P[q]);
-      if (dd < best) {
-        best = dd;
-        kb = k;
-      }
-    }
+    double d2;
+    size_t kb = bsfit__nearest_find(&nn, P);
     F.P = P;
     F.lo = c->periodic ? par[kb] - step[kb] : fmax(par[kb] - step[kb], a);
     F.hi = c->periodic ? par[kb] + step[kb] : fmin(par[kb] + step[kb], b);
     u[i] = bsfit__curve_wrap(c, closest_from(&F, par[kb], step[kb], &d2));
     if (dist) dist[i] = sqrt(d2);
   }
+  bsfit__nearest_free(&nn);
   polys_free(F.poly);
   bsfit__free(NULL, smp, bytes);
   return bsfit__ok(st);

@@ -2,7 +2,8 @@
 ** curve_ops_internal.h
 ** The working form shared by the curve operations (curve_ops.c, curve_elevate.c,
 ** curve_eval.c, curve_geom.c): a bare knot vector and control points in homogeneous
-** coordinates, so that one algorithm serves polynomial and rational curves alike.
+** coordinates, so that one algorithm serves polynomial and rational curves alike; and
+** the nearest-sample index of the closest-point search (nearest_sample.c).
 ** Not part of the public API.
 */
 #ifndef BSFIT_CURVE_OPS_INTERNAL_H
@@ -58,6 +59,29 @@ void bsfit__curve_derivs_span(const bsfit_curve *c, size_t s, double u, int k, d
 ** polynomial in t = (u - U[s]) / (U[s+1] - U[s]): coef[j*dim + q], j = 0..3, the
 ** coefficients of t^j (from the exact derivatives at U[s]). */
 void bsfit__cubic_span_poly(const bsfit_curve *c, size_t s, double *coef);
+
+/* nearest_sample.c: the nearest of K samples (K*d doubles, row-major, d <= 4) to a point,
+** exactly the first sample of smallest sum_q (x_q - P_q)^2 (summed in order of q), found
+** by a static k-d tree when K and the number of queries make one pay, else by a scan. */
+typedef struct bsfit__nearest {
+  const double *smp; /* the samples (borrowed: they must outlive the index) */
+  size_t K, d;
+  int depth;         /* of the leaves; -1: no tree, queries scan smp */
+  size_t nnode;      /* 2^(depth+1) - 1 */
+  double *pts;       /* K*d: the samples in tree order */
+  double *box;       /* nnode boxes, 2*d doubles each: lower corner, upper corner */
+  size_t *idx;       /* K: the sample index of each tree position */
+  void *block;       /* pts, box and idx in one allocation of `bytes` */
+  size_t bytes;
+} bsfit__nearest;
+
+/* Builds the index for about `queries` look-ups. BSFIT_ENOMEM (nn then needs no free);
+** on success free it with bsfit__nearest_free (NULL-safe, idempotent). */
+bsfit_err bsfit__nearest_init(bsfit__nearest *nn, const double *smp, size_t K, size_t d,
+                              size_t queries, bsfit_status *st);
+/* The index of the nearest sample to P (d finite doubles); K >= 1. */
+size_t bsfit__nearest_find(const bsfit__nearest *nn, const double *P);
+void bsfit__nearest_free(bsfit__nearest *nn);
 
 /* Cheap O(1) checks of a curve handed to an operation: not NULL, arrays present,
 ** degree and dimension in range. The full O(n) check is bsfit_curve_validate. */

@@ -2,11 +2,14 @@
 ** bench_eval.c
 ** Batch evaluation speed (bsfit_curve_eval_many): points per second for a cubic curve
 ** with 2000 control points at 10^6 parameters, sorted and shuffled, in 2D and 3D, and
-** for a cubic NURBS. Best of several runs, timed with clock_gettime(CLOCK_MONOTONIC).
+** for a cubic NURBS; then closest points (bsfit_curve_closest_many) of 10^3, 10^4 and 10^5
+** points near a closed cubic with 2000 and with 100 spans. Best of several runs, timed with
+** clock_gettime(CLOCK_MONOTONIC).
 ** Usage: bench_eval [runs]   (default 5). Build in Release (the default build type).
 */
 #define _POSIX_C_SOURCE 199309L /* clock_gettime under -std=c11 */
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <time.h>
@@ -54,6 +57,73 @@ static double best_rate(const bsfit_curve *c, const double *u, double *out, int 
   return best;
 }
 
+/* A closed cubic through a wobbly circle of N control points (N spans), and m points
+** moved off it by up to 0.05 in x and in y (a section's data around its fitted curve). */
+static int closed_section(bsfit_curve *c, size_t N, double *pts, size_t m) {
+  static double ctrl[NCTRL * 2];
+  unsigned long long s = 11;
+  double a, b, xy[2];
+  size_t i;
+  bsfit_status st;
+  for (i = 0; i < N; i++) {
+    double t = 6.283185307179586 * (double)i / (double)N, r = 1.0 + 0.2 * sin(5.0 * t);
+    ctrl[2 * i] = r * cos(t);
+    ctrl[2 * i + 1] = r * sin(t);
+  }
+  if (bsfit_curve_new_periodic(c, 3, 2, N, NULL, ctrl, NULL, NULL, &st)) {
+    fprintf(stderr, "bench_eval: %s\n", st.msg);
+    return 1;
+  }
+  bsfit_curve_domain(c, &a, &b);
+  for (i = 0; i < m; i++) {
+    if (bsfit_curve_eval(c, a + (b - a) * next_uniform(&s), xy, &st)) return 1;
+    pts[2 * i] = xy[0] + 0.1 * (next_uniform(&s) - 0.5);
+    pts[2 * i + 1] = xy[1] + 0.1 * (next_uniform(&s) - 0.5);
+  }
+  return 0;
+}
+
+/* best time in seconds of closest_many for the first m of pts */
+static double best_closest(const bsfit_curve *c, const double *pts, size_t m, double *u,
+                           double *d, int runs) {
+  double best = INFINITY;
+  int r;
+  for (r = 0; r < runs; r++) {
+    double t0 = now(), dt;
+    if (bsfit_curve_closest_many(c, pts, m, u, d, NULL) != BSFIT_OK) return -1.0;
+    dt = now() - t0;
+    if (dt < best) best = dt;
+  }
+  return best;
+}
+
+static int bench_closest(int runs, double *sink) {
+  static const size_t spans[] = {2000, 100}, ms[] = {1000, 10000, 100000};
+  double *pts = malloc(100000 * 2 * sizeof(double)), *u = malloc(100000 * sizeof(double));
+  double *d = malloc(100000 * sizeof(double));
+  size_t j, k;
+  if (!pts || !u || !d) return 1;
+  printf("closest_many, closed cubic 2D, points up to 0.05 off it in x and y, best of %d runs\n",
+         runs);
+  for (j = 0; j < 2; j++) {
+    bsfit_curve c;
+    bsfit_curve_init(&c);
+    if (closed_section(&c, spans[j], pts, 100000)) return 1;
+    for (k = 0; k < 3; k++) {
+      double t = best_closest(&c, pts, ms[k], u, d, runs);
+      if (t < 0) return 1;
+      *sink += d[0];
+      printf("%5zu spans  %6zu points  %9.3f ms  %7.2f us/point\n", spans[j], ms[k], 1e3 * t,
+             1e6 * t / (double)ms[k]);
+    }
+    bsfit_curve_free(&c);
+  }
+  free(pts);
+  free(u);
+  free(d);
+  return 0;
+}
+
 int main(int argc, char **argv) {
   (void)bsfit_blas_single_thread(); /* see bsfit_fit.h: idle BLAS workers spin */
   int runs = argc > 1 ? atoi(argv[1]) : 5, dim, rational;
@@ -85,6 +155,7 @@ int main(int argc, char **argv) {
              rational ? "NURBS" : "B-spline", dim, rs / 1e6, ru / 1e6);
       bsfit_curve_free(&c);
     }
+  if (bench_closest(runs, &sink)) return 1;
   free(sorted);
   free(shuffled);
   free(out);
