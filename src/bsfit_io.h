@@ -220,7 +220,9 @@ BSFIT_API void bsfit_svg_free(bsfit_svg *s);
 ** IGES 5.3 export
 ** One fixed-format file (80-column records: Start, Global, Directory Entry,
 ** Parameter Data, Terminate) per entity. Units: millimetres (the coordinates are
-** written as they are).
+** written as they are). The Global section's dates are the time of writing, or
+** SOURCE_DATE_EPOCH (seconds since 1970, UTC) when that environment variable holds one:
+** set it and the same curve gives the same bytes.
 ** ===================================================================== */
 
 /** Formats a valid curve of dimension 1..3 as an IGES file holding one entity 126
