@@ -222,14 +222,18 @@ double bsfit__band_norm1(const double *ab, size_t ldab, int kd, size_t lo, size_
   size_t c, r;
   double mx = 0.0;
   for (c = lo; c <= hi; c++) colsum[c - lo] = 0.0;
-  for (c = lo; c <= hi; c++)
-    for (r = c; r <= hi && r <= c + (size_t)kd; r++) {
-      double v = fabs(ab[(r - c) + c * ldab]);
-      colsum[c - lo] += v;
-      if (r != c) colsum[r - lo] += v;
+  for (c = lo; c <= hi; c++) { /* column c below the diagonal is row c right of it */
+    const double *col = ab + c * ldab;
+    size_t rmax = hi - c < (size_t)kd ? hi - c : (size_t)kd;
+    double s = fabs(col[0]);
+    for (r = 1; r <= rmax; r++) {
+      double v = fabs(col[r]);
+      s += v;
+      colsum[c + r - lo] += v;
     }
-  for (c = lo; c <= hi; c++)
-    if (colsum[c - lo] > mx) mx = colsum[c - lo];
+    colsum[c - lo] += s;
+    if (colsum[c - lo] > mx) mx = colsum[c - lo]; /* complete: nothing left to add to it */
+  }
   return mx;
 }
 

@@ -264,7 +264,8 @@ FIT_INLINE int moment_assemble(bsfit_fitter *f, const double *pts, size_t m, con
                                const double *u, const double *w, const int p) {
   size_t k = 0, stride = bsfit__fit_poly_stride(p);
   span_walk sw;
-  int badw = 0, a, c;
+  double wmin = 1.0; /* a NaN weight is caught by the finiteness check of the sums */
+  int a, c;
   walk_init(&sw, f);
   while (k < m) {
     double x = walk_param(&sw, u, k), lo, hi, mid, scale;
@@ -277,7 +278,7 @@ FIT_INLINE int moment_assemble(bsfit_fitter *f, const double *pts, size_t m, con
     do {
       const double *q = pts + k * (size_t)dim;
       double wk = w ? w[k] : 1.0, t = (x - mid) * scale, pw[2 * MOMENT_MAX_DEGREE + 1];
-      badw |= !(wk > 0.0);
+      wmin = wk < wmin ? wk : wmin;
       moment_powers(wk, t, p, pw);
       for (a = 0; a <= 2 * p; a++) M[a] += pw[a];
       for (a = 0; a <= p; a++)
@@ -287,7 +288,7 @@ FIT_INLINE int moment_assemble(bsfit_fitter *f, const double *pts, size_t m, con
     } while (x >= lo && x < hi);
     flush_moments(f, sw.s, p, dim, C, M, R);
   }
-  return badw;
+  return !(wmin > 0.0);
 }
 
 typedef struct resid_acc {
@@ -400,7 +401,7 @@ static int cubic2_assemble(bsfit_fitter *f, const double *pts, size_t m, const d
                            const double *w) {
   size_t k = 0, stride = bsfit__fit_poly_stride(3);
   span_walk sw;
-  int badw = 0;
+  double wmin = 1.0; /* a NaN weight is caught by the finiteness check of the sums */
   walk_init(&sw, f);
   while (k < m) {
     double x = walk_param(&sw, u, k), lo, hi, mid, scale, M[7], Rx[4], Ry[4];
@@ -415,7 +416,7 @@ static int cubic2_assemble(bsfit_fitter *f, const double *pts, size_t m, const d
       double wk = w ? w[k] : 1.0, t = (x - mid) * scale, t2 = t * t, t4 = t2 * t2;
       pair e01 = {wk, wk * t}, e23 = e01 * t2, e45 = e01 * t4, t4z = {t4, 0.0};
       pair qx = {pts[2 * k], pts[2 * k]}, qy = {pts[2 * k + 1], pts[2 * k + 1]};
-      badw |= !(wk > 0.0);
+      wmin = wk < wmin ? wk : wmin;
       m01 += e01, m23 += e23, m45 += e45, m6 += e23 * t4z;
       x01 += e01 * qx, x23 += e23 * qx, y01 += e01 * qy, y23 += e23 * qy;
       if (++k == m) break;
@@ -427,7 +428,7 @@ static int cubic2_assemble(bsfit_fitter *f, const double *pts, size_t m, const d
     Ry[0] = y01[0], Ry[1] = y01[1], Ry[2] = y23[0], Ry[3] = y23[1];
     cubic2_flush(f, sw.s, C, M, Rx, Ry);
   }
-  return badw;
+  return !(wmin > 0.0);
 }
 
 static void cubic2_residuals(const bsfit_fitter *f, const double *ctrl, const double *pts,
