@@ -223,6 +223,30 @@ fit_test("options: count overrides the rule, unknown names raise", function()
   T.raises({ match = "bsfit.Points expected" }, function() carvalho.run(42) end)
 end)
 
+fit_test("sections the rules cannot fit give a clear error, repeated points a fit", function()
+  local auto = require "bsfit.strategy.auto"
+  for _, S in ipairs{ carvalho, periodic, auto } do
+    T.raises(S.name .. ": 3 points are too few for a curve of degree 3 (at least 4 needed)",
+             function() S.run({ { 0, 0 }, { 1, 0 }, { 0, 1 } }) end)
+    T.raises("params failed: all 5 points coincide (EDEGENERATE)",
+             function() S.run({ { 1, 1 }, { 1, 1 }, { 1, 1 }, { 1, 1 }, { 1, 1 } }) end)
+  end
+  -- every point of a circle three times: 60 distinct parameters, while the 50% rule
+  -- asks for 90 control points
+  local rows = {}
+  for k = 0, 59 do
+    local a = 2 * math.pi * k / 60
+    for _ = 1, 3 do rows[#rows + 1] = { math.cos(a), math.sin(a) } end
+  end
+  local P = bs.points.new(rows)
+  T.eq(common.distinct_params(bs.params(P, "chord", { closed = true })), 60)
+  for _, S in ipairs{ periodic, auto } do
+    local C, rep = S.run(P)
+    T.ok(C:distinct() <= 60, S.name .. ": " .. C:distinct() .. " control points")
+    T.ok(rep.max < 1e-3, S.name .. ": max deviation " .. rep.max)
+  end
+end)
+
 fit_test("periodic: a circle is fitted within its sampling error", function()
   local P = regular_polygon(64, 10)
   local C, rep = periodic.run(P)

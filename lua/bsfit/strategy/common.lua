@@ -223,7 +223,7 @@ function M.params_chord(closed)
   return function(P, ctx)
     local c = closed
     if c == nil then c = M.closed(ctx) end
-    return bs.params(P, ctx.settings.param, { closed = c })
+    return M.ok("params", bs.params(P, ctx.settings.param, { closed = c }))
   end
 end
 
@@ -235,7 +235,7 @@ function M.params_trusted(closed)
   return function(P, ctx)
     local c, s = closed, ctx.settings
     if c == nil then c = M.closed(ctx) end
-    if s.point_weights == nil then return bs.params(P, s.param, { closed = c }) end
+    if s.point_weights == nil then return M.ok("params", bs.params(P, s.param, { closed = c })) end
     point_weights(s.point_weights, #P) -- the strategies' messages for misuse
     return M.ok("params", bs.params_trusted(P, s.param, { closed = c, weights = s.point_weights,
                                                          trust = trust_of(ctx) }))
@@ -300,16 +300,34 @@ function M.scale_weights(w, pw)
   return bs.vector.new(a)
 end
 
+-- Number of distinct values among sorted parameters (a Vector or a table): points
+-- that coincide share a parameter (bs.params), and a fit cannot have more control
+-- points than distinct parameters.
+function M.distinct_params(u)
+  if type(u) ~= "table" then u = u:totable() end
+  local n, last = 0, nil
+  for i = 1, #u do
+    if u[i] ~= last then n, last = n + 1, u[i] end
+  end
+  return n
+end
+
 -- Control-point count (SPEC 2.7): the number of curvature inversions of the
 -- closed polygon; below 50% of the points, 50% of the points. Kept within what a
--- fit of degree p to m points can have: p+1 .. m.
+-- fit of degree p to m points can have: p+1 .. the number of distinct parameters
+-- (repeated points would otherwise leave knot spans without data).
 function M.count_inversions(P, ctx)
   local m, p = #P, ctx.settings.degree
   local inv = bs.geom.inflections(P, { closed = M.closed(ctx) })
   ctx.inflections = inv
   local n = inv
   if inv < 0.5 * m then n = m // 2 end
-  return M.clamp_count(n, m, p)
+  local distinct = ctx.params and M.distinct_params(ctx.params) or m
+  if distinct < p + 1 then
+    error(("%s: %d distinct points are too few for a curve of degree %d (at least %d needed)")
+          :format(ctx.strategy.name, distinct, p, p + 1), 0)
+  end
+  return M.clamp_count(n, math.min(m, distinct), p)
 end
 
 function M.clamp_count(n, m, p)
@@ -423,10 +441,13 @@ end
 function M.run(strategy, P, opts)
   P = check_points(P)
   opts = check_options(strategy, opts)
-  if #P < 3 then
-    error(("%s: %d points, at least 3 needed for a closed section"):format(strategy.name, #P), 0)
+  local settings = settings_of(strategy, opts)
+  local need = math.max(3, settings.degree + 1)
+  if #P < need then
+    error(("%s: %d points are too few for a curve of degree %d (at least %d needed)")
+          :format(strategy.name, #P, settings.degree, need), 0)
   end
-  local ctx = { strategy = strategy, opts = opts, settings = settings_of(strategy, opts),
+  local ctx = { strategy = strategy, opts = opts, settings = settings,
                 P = P, times = {}, cache = {} }
   local t0 = clock()
   for _, name in ipairs(strategy.order) do
