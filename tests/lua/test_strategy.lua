@@ -247,6 +247,27 @@ fit_test("sections the rules cannot fit give a clear error, repeated points a fi
   end
 end)
 
+fit_test("setting solver: every choice fits the same curve; a bad one raises", function()
+  -- an irregular blob: no two start candidates of the paper's search tie (on a regular
+  -- polygon rounding would pick among equals, differently per solver)
+  local t = {}
+  for k = 0, 47 do
+    local a = 2 * math.pi * k / 48 + 0.05 * math.sin(5 * k)
+    local r = 5 + 0.7 * math.cos(2 * a) + 0.3 * math.sin(3 * a + 0.4)
+    t[#t + 1] = { r * math.cos(a), r * math.sin(a) }
+  end
+  local P = bs.points.new(t)
+  local auto = require "bsfit.strategy.auto"
+  for _, S in ipairs{ carvalho, periodic, auto } do
+    local C1, r1 = S.run(P, { solver = "cholesky" })
+    local C2, r2 = S.run(P, { solver = "qr" })
+    T.eq(C1:distinct(), C2:distinct(), S.name)
+    T.eq(r1.start_index, r2.start_index, S.name .. " start")
+    T.ok(C1:max_deviation(C2) < 1e-9, S.name .. ": " .. C1:max_deviation(C2))
+    T.raises({ match = "field 'solver': invalid option 'lu'" }, function() S.run(P, { solver = "lu" }) end)
+  end
+end)
+
 fit_test("periodic: a circle is fitted within its sampling error", function()
   local P = regular_polygon(64, 10)
   local C, rep = periodic.run(P)

@@ -31,7 +31,8 @@
 --            and a setting cannot share a name: opts[step] replaces the step)
 --   measure  distances of the points to the curve (vectorised projection in C)
 -- Settings: degree (3), param ("chord"), closed (true), trust (0.1), correct (3),
--- robust (false), huber (1.345), count_max (m/2 up to 500 points, then m/3, at
+-- robust (false), huber (1.345), solver ("auto": Cholesky, QR when the normal matrix
+-- is ill-conditioned; see bs.fitter), count_max (m/2 up to 500 points, then m/3, at
 -- most 4000); optional:
 -- point_weights, tol.
 -- rep: count, sigma, corners (1-based indices), tries ({count, rms, max} per fit of
@@ -43,7 +44,7 @@ local common = require "bsfit.strategy.common"
 local M = { name = "auto" }
 
 M.settings = { degree = 3, param = "chord", closed = true, trust = 0.1, correct = 3,
-               robust = false, huber = 1.345 }
+               robust = false, huber = 1.345, solver = "auto" }
 M.optional = { point_weights = true, tol = true, count_max = true }
 
 M.order = { "sigma", "params", "weights", "corners", "count", "fit", "reweight", "measure" }
@@ -180,7 +181,8 @@ end
 
 -- One fit with knots K on parameters u; reuses the strategy's fitter.
 local function fit_once(ctx, P, K, u, w)
-  local o = { degree = ctx.settings.degree, knots = K, periodic = closed(ctx) }
+  local o = { degree = ctx.settings.degree, knots = K, periodic = closed(ctx),
+              solver = ctx.settings.solver }
   local F = ctx.cache.fitter
   if F then F:configure(o) else F = bs.fitter(o); ctx.cache.fitter = F end
   return common.ok("fit", F:fit(P, u, w))

@@ -11,7 +11,8 @@
 -- opts: any step name below replaces that step (a function f(P, ctx) -> value,
 -- or a plain value taken as the step's result, e.g. {count = 24}); settings:
 -- degree (3), param ("chord"), point_weights (per-point weights multiplied into
--- the weighting rule's), closed (true; false raises). Unknown names raise.
+-- the weighting rule's), closed (true; false raises), solver ("cholesky", the
+-- paper's normal equations; "qr" or "auto": see bs.fitter). Unknown names raise.
 -- rep: points, count, inflections, weights (Vector), start_index (1-based index
 -- of the input point the curve starts at), candidates (indices tried), candidate_dt
 -- (dt_1 + dt_2 of each), rms, max, max_index, residuals (closest-point distances
@@ -22,7 +23,7 @@ local common = require "bsfit.strategy.common"
 
 local M = { name = "carvalho" }
 
-M.settings = { degree = 3, param = "chord", closed = true }
+M.settings = { degree = 3, param = "chord", closed = true, solver = "cholesky" }
 M.optional = { point_weights = true }
 
 M.order = { "params", "weights", "count", "knots", "fit", "close", "start", "tangent", "measure" }
@@ -51,8 +52,9 @@ end
 -- start-point search (same size, new knots: no new workspace).
 local function fitter(ctx, K)
   local F = ctx.cache.fitter
-  if F then return F:configure { degree = ctx.settings.degree, knots = K } end
-  F = bs.fitter { degree = ctx.settings.degree, knots = K }
+  local o = { degree = ctx.settings.degree, knots = K, solver = ctx.settings.solver }
+  if F then return F:configure(o) end
+  F = bs.fitter(o)
   ctx.cache.fitter = F
   return F
 end

@@ -11,7 +11,8 @@
 -- opts: any step name replaces that step (function f(P, ctx) -> value, or a plain
 -- value); settings: degree (3), param ("chord"), tol (none), point_weights,
 -- trust (0.1), knot_rule ("periodic-averaging"; "carvalho-closed" for the paper's
--- closed knots), closed (true; false fits an open curve with the same weights and
+-- closed knots), solver ("auto": Cholesky, QR when the normal matrix is
+-- ill-conditioned; see bs.fitter), closed (true; false fits an open curve with the same weights and
 -- count: open chord parameters, clamped averaging knots, open weighted least squares).
 --
 -- Down-weighted points (point_weights below trust x their median, the rule of
@@ -33,7 +34,7 @@ local common = require "bsfit.strategy.common"
 
 local M = { name = "periodic" }
 
-M.settings = { degree = 3, param = "chord", closed = true, trust = 0.1 }
+M.settings = { degree = 3, param = "chord", closed = true, trust = 0.1, solver = "auto" }
 M.optional = { point_weights = true, tol = true, knot_rule = true }
 
 M.order = { "params", "weights", "count", "knots", "fit", "start", "refine", "measure" }
@@ -83,12 +84,12 @@ function steps.fit(P, ctx)
   if type(K) == "string" then
     local o = cache.fitter_rule
     if F == nil or o == nil or o.rule ~= K or o.count ~= n or o.degree ~= p or o.periodic ~= closed then
-      o = { degree = p, count = n, rule = K, periodic = closed }
+      o = { degree = p, count = n, rule = K, periodic = closed, solver = ctx.settings.solver }
       if F then F:configure(o) else F = bs.fitter(o) end
       cache.fitter_rule = o
     end
   else
-    local o = { degree = p, knots = K, periodic = closed }
+    local o = { degree = p, knots = K, periodic = closed, solver = ctx.settings.solver }
     if F then F:configure(o) else F = bs.fitter(o) end
     cache.fitter_rule = nil
   end
