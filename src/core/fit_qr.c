@@ -59,6 +59,12 @@ static qr_sys qr_view(const bsfit_fitter *f, int dim) {
 /* doubles per block row: band part, border part, right-hand sides */
 #define ROW_MAX (2 * BSFIT_MAX_DEGREE + 1 + 4)
 
+#if defined(__GNUC__)
+#  define QR_INLINE static inline __attribute__((always_inline))
+#else
+#  define QR_INLINE static inline
+#endif
+
 typedef struct row_block {
   double x[CHUNK * ROW_MAX];
   size_t j0;    /* band column of the rows' first band entry */
@@ -66,7 +72,8 @@ typedef struct row_block {
 } row_block;
 
 /* sqrt(alpha^2 + sum_r x[r*W + j]^2), scaled where the plain sum would under- or overflow */
-static double column_norm(double alpha, const double *x, int k, int W, int j, double *xss) {
+QR_INLINE double column_norm(double alpha, const double *x, int k, const int W, int j,
+                             double *xss) {
   double ss = 0.0, mx = fabs(alpha), sc = 0.0;
   int r;
   for (r = 0; r < k; r++) ss += x[r * W + j] * x[r * W + j];
@@ -84,7 +91,7 @@ static double column_norm(double alpha, const double *x, int k, int W, int j, do
 ** (beta, 0) (LAPACK dlarfg), applied to the block's columns j+1..W-1 and to their entries
 ** in the triangle's row, *t[i] for column j+1+i (a dummy where the triangle has none: the
 ** block's column is zero there). Column j of the block becomes v's tail. */
-static void reflect(double *diag, double *x, int k, int W, int j, double *const *t) {
+QR_INLINE void reflect(double *diag, double *x, int k, const int W, int j, double *const *t) {
   double alpha = *diag, xss, nrm = column_norm(alpha, x, k, W, j, &xss), beta, tau, scale;
   double sv[ROW_MAX];
   int r, i, n = W - j - 1;
@@ -109,9 +116,10 @@ static void reflect(double *diag, double *x, int k, int W, int j, double *const 
 }
 
 /* Takes the block's rows into R (band columns j0..j0+p, border, right-hand sides), then
-** what is left of their border parts into R22. */
-static void flush_block(qr_sys *S, row_block *blk) {
-  const int p = S->p, q = S->q, d = S->dim, W = blk->width, k = blk->k;
+** what is left of their border parts into R22. W: the block's width, a constant in the
+** common instances below so that the loops over a row unroll. */
+QR_INLINE void flush_width(qr_sys *S, row_block *blk, const int W) {
+  const int p = S->p, q = S->q, d = S->dim, k = blk->k;
   size_t j0 = blk->j0, nb = S->nb;
   int c, j, bandcols = (int)(nb - j0 < (size_t)p + 1 ? nb - j0 : (size_t)p + 1);
   double *t[ROW_MAX], dummy = 0.0;
@@ -132,6 +140,15 @@ static void flush_block(qr_sys *S, row_block *blk) {
     reflect(S->R22 + c + c * q, blk->x, k, W, p + 1 + c, t);
   }
   blk->k = 0;
+}
+
+static void flush_block(qr_sys *S, row_block *blk) {
+  switch (blk->width) {
+    case 6: flush_width(S, blk, 6); break; /* cubic 2D, open */
+    case 7: flush_width(S, blk, 7); break; /* cubic 3D, open */
+    case 9: flush_width(S, blk, 9); break; /* cubic 2D, periodic */
+    default: flush_width(S, blk, blk->width);
+  }
 }
 
 /* }====================================================================== */
