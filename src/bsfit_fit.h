@@ -148,7 +148,7 @@ typedef enum bsfit_solver {
   ** rows of a span at a time) into a banded upper triangle (periodic fits: bordered by p
   ** dense columns), then banded back substitution (dtbtrs): O(m p (p + p_border + dim)), no
   ** normal matrix, so the accuracy follows the condition number of the collocation matrix
-  ** itself. About 4x the Cholesky time for open fits, 7x for periodic ones (bench_fit).
+  ** itself. About 3-5x the Cholesky time for open fits, 8x for periodic ones (bench_fit).
   ** Parameters out of order (after wrapping, for periodic fits) are sorted by span first,
   ** with an m-entry index array the fitter keeps for later fits. */
   BSFIT_SOLVER_QR = 1,
