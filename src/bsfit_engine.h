@@ -46,8 +46,10 @@ typedef struct bsfit_engine_opts {
   ** script's own pcall cannot catch that. */
   unsigned long long instr_budget;
   /** Directory holding the shipped Lua modules (bsfit/...), or NULL: then
-  ** $BSFIT_PATH, else the build tree's lua/, else <exe dir>/../share/bsfit/lua,
-  ** else the install prefix's share/bsfit/lua. The string is copied. */
+  ** $BSFIT_PATH, else <exe dir>/../share/bsfit/lua (an installed program reads its
+  ** own modules, even while the tree it was built from still exists), else the build
+  ** tree's lua/ (a program run from the build directory), else the install prefix's
+  ** share/bsfit/lua. The string is copied. */
   const char *lua_path;
   /** Optional argv[0] of the host program, used to find <exe dir> when
   ** /proc/self/exe is unavailable. May be NULL. The string is copied. */

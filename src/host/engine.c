@@ -309,11 +309,11 @@ static char *find_luadir(const bsfit_engine_opts *o) {
   char *inst;
   if (o->lua_path != NULL) return dup_str(o->lua_path);
   if (env != NULL && env[0] != '\0') return dup_str(env);
+  inst = installed_luadir(o->argv0); /* before the build tree: see lua_path's doc */
+  if (inst != NULL) return inst;
 #ifdef BSFIT_LUA_DIR_BUILD
   if (is_dir(BSFIT_LUA_DIR_BUILD)) return dup_str(BSFIT_LUA_DIR_BUILD);
 #endif
-  inst = installed_luadir(o->argv0);
-  if (inst != NULL) return inst;
 #ifdef BSFIT_LUA_DIR_INSTALL
   if (is_dir(BSFIT_LUA_DIR_INSTALL)) return dup_str(BSFIT_LUA_DIR_INSTALL);
 #endif
