@@ -7,7 +7,8 @@
 ** Array layouts used below:
 ** - points `pts`: m rows of `dim` doubles, row-major [x0,y0,(z0,)x1,y1,...], 1 <= dim <= 4;
 ** - parameters `u`: m doubles, one per point;
-** - weights `w`: m positive finite doubles, one per point;
+** - weights `w`: m finite doubles >= DBL_MIN (positive and not subnormal: a subnormal
+**   weight keeps too few digits for the sums), one per point;
 ** - a "period" of knots for a closed curve with N distinct control points: N+1
 **   non-decreasing values t[0] < t[N] (see bsfit_knots_periodic for the expanded form).
 */
@@ -276,7 +277,7 @@ BSFIT_API int bsfit_blas_single_thread(void);
 ** @param[out] residuals m distances |Q_k - C(ū_k)|, or NULL.
 ** @return BSFIT_OK; BSFIT_EINVAL (NULL arrays); BSFIT_EDIM; BSFIT_ETOOFEW (m < count);
 **         BSFIT_ENONFINITE (NaN/Inf in a point or parameter); BSFIT_EWEIGHT (a weight
-**         zero, negative or not finite); BSFIT_EDEGENERATE (all points coincident);
+**         zero, negative, subnormal or not finite); BSFIT_EDEGENERATE (all points coincident);
 **         any code of bsfit_knots_place except BSFIT_EEMPTYSPAN (rule-based knots);
 **         BSFIT_EEMPTYSPAN (the normal matrix is not positive definite and some span holds
 **         no data: the message names the first); BSFIT_ENOTSPD (not positive definite

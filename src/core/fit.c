@@ -385,9 +385,11 @@ static bsfit_err input_error(const double *pts, size_t m, int dim, const double 
         return bsfit__fail(st, BSFIT_ENONFINITE, "point %zu has a NaN or Inf coordinate", k);
     if (!isfinite(u[k]))
       return bsfit__fail(st, BSFIT_ENONFINITE, "parameter %zu is not finite", k);
-    if (w && !(isfinite(w[k]) && w[k] > 0.0))
-      return bsfit__fail(st, BSFIT_EWEIGHT, "weight %zu is %g (must be positive and finite)", k,
-                         w[k]);
+    /* subnormal weights (below DBL_MIN) are refused too: the sums would keep only a few
+    ** of their digits, and the fit would come back wrong without a word */
+    if (w && !(isfinite(w[k]) && w[k] >= DBL_MIN))
+      return bsfit__fail(st, BSFIT_EWEIGHT, "weight %zu is %g (must be finite and at least "
+                         "DBL_MIN = 2.2e-308)", k, w[k]);
   }
   return bsfit__fail(st, BSFIT_ENONFINITE, "the normal equations overflow");
 }

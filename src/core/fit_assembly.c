@@ -264,7 +264,7 @@ FIT_INLINE int moment_assemble(bsfit_fitter *f, const double *pts, size_t m, con
                                const double *u, const double *w, const int p) {
   size_t k = 0, stride = bsfit__fit_poly_stride(p);
   span_walk sw;
-  double wmin = 1.0; /* a NaN weight is caught by the finiteness check of the sums */
+  double wmin = 1.0; /* NaN is caught by the sums' finiteness check; subnormal: fit.c */
   int a, c;
   walk_init(&sw, f);
   while (k < m) {
@@ -288,7 +288,7 @@ FIT_INLINE int moment_assemble(bsfit_fitter *f, const double *pts, size_t m, con
     } while (x >= lo && x < hi);
     flush_moments(f, sw.s, p, dim, C, M, R);
   }
-  return !(wmin > 0.0);
+  return !(wmin >= DBL_MIN);
 }
 
 typedef struct resid_acc {
@@ -401,7 +401,7 @@ static int cubic2_assemble(bsfit_fitter *f, const double *pts, size_t m, const d
                            const double *w) {
   size_t k = 0, stride = bsfit__fit_poly_stride(3);
   span_walk sw;
-  double wmin = 1.0; /* a NaN weight is caught by the finiteness check of the sums */
+  double wmin = 1.0; /* NaN is caught by the sums' finiteness check; subnormal: fit.c */
   walk_init(&sw, f);
   while (k < m) {
     double x = walk_param(&sw, u, k), lo, hi, mid, scale, M[7], Rx[4], Ry[4];
@@ -428,7 +428,7 @@ static int cubic2_assemble(bsfit_fitter *f, const double *pts, size_t m, const d
     Ry[0] = y01[0], Ry[1] = y01[1], Ry[2] = y23[0], Ry[3] = y23[1];
     cubic2_flush(f, sw.s, C, M, Rx, Ry);
   }
-  return !(wmin > 0.0);
+  return !(wmin >= DBL_MIN);
 }
 
 static void cubic2_residuals(const bsfit_fitter *f, const double *ctrl, const double *pts,
@@ -529,7 +529,7 @@ static int basis_assemble(bsfit_fitter *f, const double *pts, size_t m, int dim,
     do {
       const double *q = pts + k * (size_t)dim;
       double wk = w ? w[k] : 1.0;
-      badw |= !(wk > 0.0);
+      badw |= !(wk >= DBL_MIN);
       basis_inv(sw.U, inv, sw.s, x, p, N);
       for (i = 0; i <= p; i++) wN[i] = wk * N[i];
       for (i = 0; i <= p; i++)

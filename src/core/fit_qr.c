@@ -71,19 +71,27 @@ typedef struct row_block {
   int k, width; /* rows held; doubles per row = (p+1) + q + dim */
 } row_block;
 
-/* sqrt(alpha^2 + sum_r x[r*W + j]^2), scaled where the plain sum would under- or overflow */
+/* sqrt(alpha^2 + sum_r x[r*W + j]^2), scaled where the plain sums would under- or
+** overflow. *nonzero: whether any x[r*W + j] is non-zero (then there is something to
+** eliminate, however small: a square that underflows to 0 does not mean a zero entry). */
 QR_INLINE double column_norm(double alpha, const double *x, int k, const int W, int j,
-                             double *xss) {
-  double ss = 0.0, mx = fabs(alpha), sc = 0.0;
+                             int *nonzero) {
+  double ss = 0.0, mx = 0.0, sc = 0.0, h;
   int r;
   for (r = 0; r < k; r++) ss += x[r * W + j] * x[r * W + j];
-  *xss = ss;
-  if (ss > 1e-250 && isfinite(ss)) return sqrt(alpha * alpha + ss);
-  for (r = 0; r < k; r++)
-    if (fabs(x[r * W + j]) > mx) mx = fabs(x[r * W + j]);
+  h = sqrt(alpha * alpha + ss);
+  if (ss > 1e-250 && isfinite(h)) {
+    *nonzero = 1;
+    return h;
+  }
+  for (r = 0; r < k; r++) {
+    double a = fabs(x[r * W + j]);
+    if (!(a <= mx)) mx = a; /* a NaN sticks: it must reach R, where the checks see it */
+  }
+  *nonzero = !(mx == 0.0);
+  if (mx < fabs(alpha)) mx = fabs(alpha);
   if (mx == 0.0) return 0.0;
   for (r = 0; r < k; r++) sc += (x[r * W + j] / mx) * (x[r * W + j] / mx);
-  *xss = sc * mx * mx; /* only compared with 0 */
   return mx * sqrt((alpha / mx) * (alpha / mx) + sc);
 }
 
@@ -92,10 +100,10 @@ QR_INLINE double column_norm(double alpha, const double *x, int k, const int W, 
 ** in the triangle's row, *t[i] for column j+1+i (a dummy where the triangle has none: the
 ** block's column is zero there). Column j of the block becomes v's tail. */
 QR_INLINE void reflect(double *diag, double *x, int k, const int W, int j, double *const *t) {
-  double alpha = *diag, xss, nrm = column_norm(alpha, x, k, W, j, &xss), beta, tau, scale;
-  double sv[ROW_MAX];
-  int r, i, n = W - j - 1;
-  if (xss == 0.0) return; /* nothing below the diagonal */
+  double alpha = *diag, nrm, beta, tau, scale, sv[ROW_MAX];
+  int r, i, n = W - j - 1, nonzero;
+  nrm = column_norm(alpha, x, k, W, j, &nonzero);
+  if (!nonzero) return; /* nothing below the diagonal */
   beta = alpha >= 0.0 ? -nrm : nrm;
   tau = (beta - alpha) / beta;
   scale = 1.0 / (alpha - beta);
@@ -321,7 +329,7 @@ bsfit_err bsfit__qr_factor(bsfit_fitter *f, const double *pts, size_t m, int dim
   for (t = 0; t < m; t++) {
     size_t k = order ? order[t] : (rot + t < m ? rot + t : rot + t - m), j0;
     double x = row_param(f, u, k), wk = w ? w[k] : 1.0;
-    *badw |= !(wk > 0.0);
+    *badw |= !(wk >= DBL_MIN); /* as the assembly: see fit.c's input_error */
     if (!(x >= f->U[s] && x < f->U[s + 1])) s = bsfit_knots_find_span(f->U, f->nraw, f->p, x);
     f->occ[s - p] = 1;
     if (f->p == 3) span_basis(f, s, x, 3, N);

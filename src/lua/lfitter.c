@@ -6,6 +6,8 @@
 */
 #include "laux.h"
 
+#include <float.h>
+#include <stdio.h>
 #include <string.h>
 
 /* {====================================================================
@@ -186,6 +188,20 @@ static int fitter_configure(lua_State *L) {
   return 1;
 }
 
+/* The fitter's weights, with 1-based messages: positive and finite (as every weight), and
+** not subnormal (bsfit_fitter_fit refuses those: the sums would keep too few digits). */
+static void check_fit_weights(lua_State *L, const bsfit_vector_ud *w) {
+  size_t i;
+  bsfit__lua_checkweights(L, 4, w->x, w->n);
+  for (i = 0; i < w->n; i++)
+    if (w->x[i] < DBL_MIN) {
+      char num[32];
+      snprintf(num, sizeof num, "%g", w->x[i]);
+      luaL_argerror(L, 4, lua_pushfstring(L, "weight %I is %s (must be at least DBL_MIN = "
+                                          "2.2e-308)", (lua_Integer)i + 1, num));
+    }
+}
+
 /* The argument a misuse status of a fit blames: the weights for a bad weight, the
 ** points otherwise (the core's message says which value). */
 static int fit_arg(bsfit_err e) { return e == BSFIT_EWEIGHT ? 4 : 2; }
@@ -259,7 +275,7 @@ static int fitter_fit(lua_State *L) {
     ** culprit again to say it with 1-based indices (no extra pass when all is well) */
     if (e == BSFIT_ENONFINITE || e == BSFIT_EWEIGHT) {
       bsfit__lua_checkfinite(L, 2, P);
-      if (w) bsfit__lua_checkweights(L, 4, w->x, w->n);
+      if (w) check_fit_weights(L, w);
     }
     return bsfit__lua_result(L, e, &st, 0, fit_arg(e));
   }

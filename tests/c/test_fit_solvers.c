@@ -193,6 +193,42 @@ static void test_rows_out_of_order(void **state) {
   assert_int_equal(ca.live, 0);
 }
 
+static void test_weights_scale_freely(void **state) {
+  /* given noisy open and closed data, when every weight is multiplied by 1e-300 or 1e306
+  ** (QR's rows then hold entries whose squares underflow or overflow), then each solver
+  ** fits the same curve as with unit weights */
+  test_rng r = {73};
+  enum { m = 120, N = 14 };
+  double pts[m * 2], u[m], w[m], ref[(N + 3) * 2], got[(N + 3) * 2];
+  const double scales[] = {1e-300, 1e306};
+  const bsfit_solver solvers[] = {BSFIT_SOLVER_CHOLESKY, BSFIT_SOLVER_QR};
+  bsfit_fit_opts o;
+  size_t k, i, j;
+  int periodic;
+  (void)state;
+  for (k = 0; k < m; k++) {
+    double t = 6.283185307179586 * (double)k / (double)m;
+    pts[2 * k] = 2.0 * cos(t) + rng_range(&r, -0.01, 0.01);
+    pts[2 * k + 1] = sin(t) * (1.0 + 0.3 * cos(3.0 * t));
+  }
+  for (periodic = 0; periodic <= 1; periodic++) {
+    size_t n = (size_t)N + (periodic ? 3 : 0);
+    assert_int_equal(bsfit_params(pts, m, 2, BSFIT_PARAM_CHORD, periodic, u, NULL), BSFIT_OK);
+    bsfit_fit_opts_init(&o);
+    o.count = N;
+    o.periodic = periodic;
+    for (j = 0; j < 2; j++) {
+      for (k = 0; k < m; k++) w[k] = 1.0;
+      (void)fit_with(solvers[j], &o, pts, m, u, w, ref);
+      for (i = 0; i < 2; i++) {
+        for (k = 0; k < m; k++) w[k] = scales[i];
+        (void)fit_with(solvers[j], &o, pts, m, u, w, got);
+        assert_true(max_diff(got, ref, n * 2) < 1e-12);
+      }
+    }
+  }
+}
+
 static void test_unknown_solver_is_refused(void **state) {
   bsfit_fit_opts o;
   bsfit_fitter *f;
@@ -211,6 +247,7 @@ int main(void) {
     cmocka_unit_test(test_qr_keeps_the_accuracy_cholesky_loses),
     cmocka_unit_test(test_auto_keeps_cholesky_when_well_conditioned),
     cmocka_unit_test(test_rows_out_of_order),
+    cmocka_unit_test(test_weights_scale_freely),
     cmocka_unit_test(test_unknown_solver_is_refused),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);

@@ -543,8 +543,26 @@ static void test_invalid_inputs(void **state) {
   u[20] = NAN;
   expect_error(bsfit_fitter_fit(f, pts, m, 2, u, w, &out, NULL, NULL, &st), BSFIT_ENONFINITE, &st);
   u[20] = keep;
-  for (k = 0; k < 4; k++) {
-    const double bad[] = {0.0, -1.0, NAN, INFINITY};
+  { /* with fixed knots the parameter reaches the fitter's own pass: NaN, +-Inf */
+    bsfit_fit_opts fo = o;
+    bsfit_fitter *g;
+    double U[12], bad[] = {NAN, INFINITY, -INFINITY};
+    assert_int_equal(bsfit_fitter_fit(f, pts, m, 2, u, w, &out, NULL, NULL, &st), BSFIT_OK);
+    memcpy(U, bsfit_fitter_knots(f, NULL), sizeof U);
+    fo.knots = U;
+    fo.nknots = 12;
+    assert_int_equal(bsfit_fitter_new(&g, &fo, NULL, &st), BSFIT_OK);
+    for (k = 0; k < 3; k++) {
+      u[20] = bad[k];
+      expect_error(bsfit_fitter_fit(g, pts, m, 2, u, w, &out, NULL, NULL, &st), BSFIT_ENONFINITE,
+                   &st);
+      assert_non_null(strstr(st.msg, "parameter 20"));
+    }
+    u[20] = keep;
+    bsfit_fitter_free(g);
+  }
+  for (k = 0; k < 5; k++) { /* 1e-320: subnormal, the sums would keep too few of its digits */
+    const double bad[] = {0.0, -1.0, NAN, INFINITY, 1e-320};
     keep = w[11];
     w[11] = bad[k];
     expect_error(bsfit_fitter_fit(f, pts, m, 2, u, w, &out, NULL, NULL, &st), BSFIT_EWEIGHT, &st);

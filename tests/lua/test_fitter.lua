@@ -242,6 +242,8 @@ T.test("misuse raises naming the argument or field", function()
   T.raises("bad argument #2 to 'fit' (5 parameters for 6 points)", function() F:fit(P, {0, 0.2, 0.4, 0.6, 1}) end)
   T.raises("bad argument #3 to 'fit' (2 weights for 6 points)", function() F:fit(P, nil, {1, 1}) end)
   T.raises({match = "^bad argument #3 to 'fit' %(.*weight"}, function() F:fit(P, nil, {1, 1, -1, 1, 1, 1}) end)
+  T.raises("bad argument #3 to 'fit' (weight 3 is 1e-310 (must be at least DBL_MIN = 2.2e-308))",
+           function() F:fit(P, nil, {1, 1, 1e-310, 1, 1, 1}) end)
   T.raises({match = "^bad argument #1 to 'fit' %(.*"}, function() F:fit({{0, 0}, {1, 1}}) end)
   T.raises({match = "^bad argument #1 to 'fit' %(.*"}, function() F:fit({{0, 0}, {1, 0 / 0}, {2, 0}, {3, 1}, {4, 0}, {5, 2}}) end)
   T.raises("bad argument #1 to 'fit' (bsfit.Points expected, got string)", function() F:fit("points") end)
