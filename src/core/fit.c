@@ -451,7 +451,7 @@ static bsfit_err fit_cholesky(bsfit_fitter *f, const double *pts, size_t m, int 
   return solution_finite(f, dim, out, st);
 }
 
-/* Givens QR of the weighted rows (fit_qr.c). */
+/* QR of the weighted rows (fit_qr.c): no normal matrix. */
 static bsfit_err fit_qr(bsfit_fitter *f, const double *pts, size_t m, int dim, const double *u,
                         const double *w, bsfit_curve *out, double *rc, bsfit_status *st) {
   bsfit__fixed_set fx;

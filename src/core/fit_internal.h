@@ -1,7 +1,7 @@
 /*
 ** fit_internal.h
-** Private helpers shared by param.c, knot_placement.c, fit.c, fit_assembly.c, periodic.c and
-** linalg.c:
+** Private helpers shared by param.c, knot_placement.c, fit.c, fit_assembly.c, fit_qr.c,
+** periodic.c and linalg.c:
 ** the LAPACKE wrappers (linalg.c is the only file calling LAPACKE), the fitter's layout
 ** and the span-by-span kernels. Not part of the public API.
 */
@@ -125,8 +125,8 @@ typedef struct bsfit__fixed_set {
 void bsfit__fit_fixed(const bsfit_fitter *f, const double *pts, size_t m, int dim,
                       bsfit__fixed_set *fx);
 
-/* fit_qr.c: Givens QR of the weighted collocation rows, row by row, into the banded upper
-** triangle R (stored in f->band as the lower band of R^T), its border (f->a12, periodic),
+/* fit_qr.c: QR of the weighted collocation rows (Householder, a span's rows at a time)
+** into the banded upper triangle R (stored in f->band as the lower band of R^T), its border (f->a12, periodic),
 ** R22 (f->s22) and the rotated right-hand sides (f->rhs); marks occupied spans. Returns
 ** BSFIT_ENOMEM (order array) or BSFIT_OK; *badw is set when a weight is <= 0 or NaN;
 ** other non-finite input shows up as non-finite entries of R or the right-hand sides. */

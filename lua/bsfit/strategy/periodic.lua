@@ -12,8 +12,9 @@
 -- value); settings: degree (3), param ("chord"), tol (none), point_weights,
 -- trust (0.1), knot_rule ("periodic-averaging"; "carvalho-closed" for the paper's
 -- closed knots), solver ("auto": Cholesky, QR when the normal matrix is
--- ill-conditioned; see bs.fitter), closed (true; false fits an open curve with the same weights and
--- count: open chord parameters, clamped averaging knots, open weighted least squares).
+-- ill-conditioned; see bs.fitter), closed (true; false fits an open curve with the
+-- same weights and count: open chord parameters, clamped averaging knots, open
+-- weighted least squares).
 --
 -- Down-weighted points (point_weights below trust x their median, the rule of
 -- bs.params_trusted) are the file saying "do not follow these": they must not steer
