@@ -143,7 +143,8 @@ BSFIT_API bsfit_err bsfit_knots_validate(const double *U, size_t nknots, int p, 
 ** polynomials). U must be valid (bsfit_knots_validate). */
 BSFIT_API size_t bsfit_knots_find_span(const double *U, size_t n, int p, double u);
 
-/** Number of knots exactly equal to u. */
+/** Number of knots exactly equal to u. U must be non-decreasing (as every valid knot vector
+** is): the run of equal knots is found by bisection, O(log nknots + multiplicity). */
 BSFIT_API int bsfit_knots_multiplicity(const double *U, size_t nknots, double u);
 
 /** Domain [U[p], U[n]] of a knot vector. */

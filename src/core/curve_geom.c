@@ -258,21 +258,6 @@ static double foot_newton(foot_ctx *F, double u, int iters, double *d2) {
 ** doubles); returns |C(u) - F->P|^2 */
 static double sample_at(foot_ctx *F, double u, double *D) { return foot_eval(F, u, D, 0); }
 
-/* How many of the nk knots U equal v: bsfit_knots_multiplicity's count, found by bisection
-** because the knots of a valid curve do not decrease (the linear count cost O(n) per
-** point, more than the rest of the search on a curve of many spans). */
-static int knot_mult(const double *U, size_t nk, double v) {
-  size_t lo = 0, hi = nk;
-  int m = 0;
-  while (lo < hi) { /* the first knot >= v */
-    size_t mid = lo + (hi - lo) / 2;
-    if (U[mid] < v) lo = mid + 1;
-    else hi = mid;
-  }
-  for (; lo < nk && U[lo] == v; lo++) m++;
-  return m;
-}
-
 /* Newton from the best sample v (step h apart from its neighbours). At a knot where the
 ** curve may turn (multiplicity >= degree: C0 or less) the derivative seen from one side
 ** cannot lead to a foot on the other: there the descent also starts half a sample step
@@ -281,7 +266,7 @@ static double closest_from(foot_ctx *F, double v, double h, double *d2) {
   const bsfit_curve *c = F->c;
   double u = foot_newton(F, v, NEWTON_MAX_ITERS, d2);
   int side;
-  if (knot_mult(c->knots, c->n + (size_t)c->degree + 1, v) < c->degree) return u;
+  if (bsfit_knots_multiplicity(c->knots, c->n + (size_t)c->degree + 1, v) < c->degree) return u;
   for (side = -1; side <= 1; side += 2) {
     double e2, w = v + 0.5 * h * side, x;
     if (w < F->lo || w > F->hi) continue;

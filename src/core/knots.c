@@ -65,10 +65,14 @@ size_t bsfit_knots_find_span(const double *U, size_t n, int p, double u) {
 }
 
 int bsfit_knots_multiplicity(const double *U, size_t nknots, double u) {
-  size_t i;
+  size_t lo = 0, hi = nknots;
   int m = 0;
-  for (i = 0; i < nknots; i++)
-    if (U[i] == u) m++;
+  while (lo < hi) { /* the first knot >= u (none for a NaN u: then m stays 0) */
+    size_t mid = lo + (hi - lo) / 2;
+    if (U[mid] < u) lo = mid + 1;
+    else hi = mid;
+  }
+  for (; lo < nknots && U[lo] == u; lo++) m++;
   return m;
 }
 

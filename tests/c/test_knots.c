@@ -109,6 +109,26 @@ static void test_multiplicity(void **state) {
   assert_int_equal(bsfit_knots_multiplicity(U, 11, 4.0), 2);
   assert_int_equal(bsfit_knots_multiplicity(U, 11, 2.0), 1);
   assert_int_equal(bsfit_knots_multiplicity(U, 11, 2.5), 0);
+  /* the ends, outside the vector, NaN, and against a plain count on random vectors */
+  assert_int_equal(bsfit_knots_multiplicity(U, 11, 5.0), 3);
+  assert_int_equal(bsfit_knots_multiplicity(U, 11, -1.0), 0);
+  assert_int_equal(bsfit_knots_multiplicity(U, 11, 6.0), 0);
+  assert_int_equal(bsfit_knots_multiplicity(U, 11, NAN), 0);
+  assert_int_equal(bsfit_knots_multiplicity(U, 0, 0.0), 0);
+  {
+    test_rng r = {5};
+    double V[40];
+    int t, i, p;
+    for (t = 0; t < 200; t++) {
+      p = 1 + t % 5;
+      random_knots(&r, p, 40 - (size_t)p - 1, t % 2, V);
+      for (i = 0; i < 40; i++) {
+        int j, count = 0;
+        for (j = 0; j < 40; j++) count += V[j] == V[i];
+        assert_int_equal(bsfit_knots_multiplicity(V, 40, V[i]), count);
+      }
+    }
+  }
 }
 
 static void test_uniform_and_clamped(void **state) {
