@@ -116,9 +116,15 @@ BSFIT_API const char *bsfit_errname(bsfit_err code);
 ** min(osize, nsize) bytes of ptr. osize is the exact size of ptr's block. */
 typedef void *(*bsfit_alloc_fn)(void *ud, void *ptr, size_t osize, size_t nsize);
 
+/** The context a long computation runs in: where its memory comes from (so a host's
+** memory cap counts scratch memory too) and a flag the host may set, from another
+** thread or a signal handler, to stop it. Loops that can run long (fits, projections,
+** filters of millions of points) look at `*interrupt` every few thousand iterations
+** and return BSFIT_EINTR when it is non-zero. Zero-initialise what you do not use. */
 typedef struct bsfit_allocator {
   bsfit_alloc_fn fn; /**< NULL means the C library's realloc/free */
   void *ud;
+  const volatile int *interrupt; /**< NULL: never interrupted */
 } bsfit_allocator;
 
 /* }==================================================================== */

@@ -176,7 +176,7 @@ bsfit_err bsfit_fitter_configure(bsfit_fitter *f, const bsfit_fit_opts *o, bsfit
 bsfit_err bsfit_fitter_new(bsfit_fitter **f, const bsfit_fit_opts *o, const bsfit_allocator *a,
                            bsfit_status *st) {
   bsfit_fitter *g;
-  bsfit_allocator al = {NULL, NULL};
+  bsfit_allocator al = {NULL, NULL, NULL};
   bsfit_err e;
   if (f == NULL) return bsfit__fail(st, BSFIT_EINVAL, "fitter output is NULL");
   *f = NULL;

@@ -27,6 +27,12 @@ void *bsfit__alloc(const bsfit_allocator *a, size_t nsize);
 void *bsfit__realloc(const bsfit_allocator *a, void *p, size_t osize, size_t nsize);
 void bsfit__free(const bsfit_allocator *a, void *p, size_t osize);
 
+/* Non-zero when the host asked the computation running with allocator a to stop.
+** Cheap: call it every few thousand iterations of a long loop, return BSFIT_EINTR. */
+static inline int bsfit__interrupted(const bsfit_allocator *a) {
+  return a != NULL && a->interrupt != NULL && *a->interrupt != 0;
+}
+
 /* n*size without overflow; 0 on overflow (callers treat 0 as an error). */
 size_t bsfit__mulsize(size_t n, size_t size);
 

@@ -706,7 +706,7 @@ static double opt_double(lua_State *L, int t, const char *k) {
 static void collect(lua_State *L, fit_args *fa, int curve, int report) {
   const bsfit_curve *c = bsfit_lua_checkcurve(L, curve);
   bsfit_engine_report r = {NAN, NAN, 0, 0};
-  bsfit_allocator libc = {NULL, NULL};
+  bsfit_allocator libc = {NULL, NULL, NULL};
   if (lua_istable(L, report)) {
     size_t start = opt_size(L, report, "start_index", 0);
     r.rms = opt_double(L, report, "rms");

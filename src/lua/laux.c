@@ -54,6 +54,7 @@ int bsfit__lua_result(lua_State *L, bsfit_err e, const bsfit_status *st, int nre
 bsfit_allocator bsfit__lua_allocator(lua_State *L) {
   bsfit_allocator a;
   a.fn = (bsfit_alloc_fn)lua_getallocf(L, &a.ud);
+  a.interrupt = NULL;
   return a;
 }
 

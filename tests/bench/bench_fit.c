@@ -100,7 +100,7 @@ int main(int argc, char **argv) {
   double t_open, t_per, t_small, t;
   bsfit_fit_report rep;
   peak_alloc pa = {0, 0};
-  bsfit_allocator al = {peak_fn, &pa};
+  bsfit_allocator al = {peak_fn, &pa, NULL};
   struct rusage ru;
   if (reps < 1) reps = 1;
 

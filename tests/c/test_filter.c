@@ -927,6 +927,7 @@ static void exhaust(bsfit_curve *c, curve_filter fn) {
   int n;
   a.fn = failing_alloc;
   a.ud = &f;
+  a.interrupt = NULL;
   c->alloc = a;
   bsfit_curve_init(&out);
   for (n = 0; n < 100; n++) {

@@ -132,7 +132,7 @@ static void test_rows_out_of_order(void **state) {
   bsfit_curve out;
   bsfit_status st;
   counting ca = {0, 0, 0};
-  bsfit_allocator al = {counting_alloc, &ca};
+  bsfit_allocator al = {counting_alloc, &ca, NULL};
   (void)state;
   for (k = 0; k < m; k++) {
     double t = 6.283185307179586 * (double)k / (double)m;

@@ -278,7 +278,7 @@ static void test_points_allocation_failures(void **state) {
   for (i = 0; i < 700; i++) len += (size_t)snprintf(text + len, sizeof text - len, "%d,%d,1\n", i, -i);
   for (n = 1; n < 100; n++) {
     counting c = {0, n, 0};
-    bsfit_allocator a = {counting_alloc, &c};
+    bsfit_allocator a = {counting_alloc, &c, NULL};
     double *xy, *w;
     bsfit_err e = bsfit_points_parse(text, len, &xy, &m, &dim, &w, &a, NULL);
     if (e == BSFIT_OK) {
@@ -511,7 +511,7 @@ static void test_json_allocation_failures(void **state) {
   make_curves(c);
   for (n = 1; n < 200; n++) {
     counting k = {0, n, 0};
-    bsfit_allocator a = {counting_alloc, &k};
+    bsfit_allocator a = {counting_alloc, &k, NULL};
     char *js = NULL;
     size_t len = 0;
     bsfit_err e;

@@ -414,7 +414,7 @@ static void test_allocation_failures(void **state) {
   (void)state;
   for (n = 1; n < 20; n++) {
     counting c = {0, n, 0};
-    bsfit_allocator a = {counting_alloc, &c};
+    bsfit_allocator a = {counting_alloc, &c, NULL};
     bsfit_surface s, d;
     bsfit_err e;
     bsfit_surface_init(&s);

@@ -670,7 +670,7 @@ static void test_reconfigure_and_reuse(void **state) {
   long before;
   double pts[200], u[100], w[100];
   counting ca = {0, 0, 0};
-  bsfit_allocator al = {counting_alloc, &ca};
+  bsfit_allocator al = {counting_alloc, &ca, NULL};
   bsfit_fit_opts o;
   bsfit_fitter *f;
   bsfit_curve out;
@@ -718,7 +718,7 @@ static void test_allocation_failures(void **state) {
   /* every allocation of new + fit fails in turn: ENOMEM, nothing leaks */
   for (nth = 1;; nth++) {
     counting ca = {0, (long)nth, 0};
-    bsfit_allocator al = {counting_alloc, &ca};
+    bsfit_allocator al = {counting_alloc, &ca, NULL};
     bsfit_fit_opts o;
     bsfit_fitter *f = NULL;
     bsfit_curve out;
