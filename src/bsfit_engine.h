@@ -46,10 +46,11 @@ typedef struct bsfit_engine_opts {
   ** script's own pcall cannot catch that. */
   unsigned long long instr_budget;
   /** Directory holding the shipped Lua modules (bsfit/...), or NULL: then
-  ** $BSFIT_PATH, else <exe dir>/../share/bsfit/lua (an installed program reads its
-  ** own modules, even while the tree it was built from still exists), else the build
-  ** tree's lua/ (a program run from the build directory), else the install prefix's
-  ** share/bsfit/lua. The string is copied. */
+  ** $BSFIT_PATH, else <exe dir>/../share/lua/5.4 (an installed program reads its
+  ** own modules, even while the tree it was built from still exists), else, for the
+  ** installed libbsfit_engine, <its lib dir>/../share/lua/5.4, else the build tree's
+  ** lua/ (a program run from the build directory), else the install prefix's
+  ** share/lua/5.4 (where stock lua5.4 finds them too). The string is copied. */
   const char *lua_path;
   /** Optional argv[0] of the host program, used to find <exe dir> when
   ** /proc/self/exe is unavailable. May be NULL. The string is copied. */

@@ -69,7 +69,7 @@ static void print_usage(FILE *f) {
           "  --mem-limit N    cap the Lua heap at N bytes (suffixes k, m, g)\n"
           "  --instr-limit N  stop any script after N Lua instructions\n"
           "  --version        print the version and exit\n"
-          "  --help           print this help and exit\n"
+          "  -h, --help       print this help and exit (COMMAND --help: the command's)\n"
           "  --               stop handling options\n"
           "  -                stop handling options and execute stdin\n"
           "The bsfit module is preloaded: local bs = require \"bsfit\".\n"
@@ -155,6 +155,7 @@ static void collectargs(cli *c) {
         break;
       case '\0': return;                 /* "-": stdin is the script */
       case 'E': if (argv[i][2] != '\0') goto bad; c->flags |= HAS_UPPER_E; break;
+      case 'h': if (argv[i][2] != '\0') goto bad; c->flags |= HAS_HELP; break;
       case 'W': if (argv[i][2] != '\0') goto bad; break;
       case 'i': if (argv[i][2] != '\0') goto bad; c->flags |= HAS_I | HAS_V; break;
       case 'v': if (argv[i][2] != '\0') goto bad; c->flags |= HAS_V; break;

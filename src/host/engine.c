@@ -11,6 +11,7 @@
 
 #include "bsfit_engine.h"
 #include "bsfit_lua.h"
+#include "libdir.h"
 
 #include <lauxlib.h>
 #include <lua.h>
@@ -275,30 +276,49 @@ static char *dup_str(const char *s) {
   return p;
 }
 
-/* <exe dir>/../share/bsfit/lua, from /proc/self/exe or else argv0; NULL if unknown. */
+/* <dir>/<rel> when it holds the bsfit modules (a bsfit/ directory); NULL otherwise.
+** dir may be a file's path: its last component is dropped. */
+static char *luadir_under(const char *path, const char *rel) {
+  const char *slash = path != NULL ? strrchr(path, '/') : NULL;
+  size_t n;
+  char *out;
+  if (slash == NULL) return NULL;
+  n = (size_t)(slash - path);
+  out = (char *)malloc(n + strlen(rel) + sizeof "//bsfit");
+  if (out == NULL) return NULL;
+  memcpy(out, path, n);
+  out[n] = '/';
+  strcpy(out + n + 1, rel);
+  strcat(out, "/bsfit");
+  if (is_dir(out)) {
+    out[strlen(out) - sizeof "/bsfit" + 1] = '\0';
+    return out;
+  }
+  free(out);
+  return NULL;
+}
+
+/* <exe dir>/<BSFIT_LUA_DIR_FROM_BIN> (share/lua/5.4 of the prefix), the program's
+** path from /proc/self/exe or else argv0; then, for the installed engine library,
+** the same from the library's own directory, so `cmake --install --prefix P`
+** works whatever prefix the build was configured with. NULL if none. */
 static char *installed_luadir(const char *argv0) {
   char exe[4096];
-  const char *tail = "/../share/bsfit/lua";
-  char *slash, *out;
+  char *out = NULL;
   ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 1);
-  if (n > 0) {
-    exe[n] = '\0';
-  } else if (argv0 != NULL && strchr(argv0, '/') != NULL && strlen(argv0) < sizeof exe) {
-    strcpy(exe, argv0);
-  } else {
-    return NULL;
+  if (n > 0) exe[n] = '\0';
+  else if (argv0 != NULL && strlen(argv0) < sizeof exe) strcpy(exe, argv0);
+  else exe[0] = '\0';
+#ifdef BSFIT_LUA_DIR_FROM_BIN
+  out = luadir_under(exe, BSFIT_LUA_DIR_FROM_BIN);
+#endif
+#ifdef BSFIT_LUA_DIR_FROM_LIB
+  if (out == NULL) {
+    char *lib = bsfit__code_path();
+    out = luadir_under(lib, BSFIT_LUA_DIR_FROM_LIB);
+    free(lib);
   }
-  slash = strrchr(exe, '/');
-  if (slash == NULL) return NULL;
-  *slash = '\0';
-  out = (char *)malloc(strlen(exe) + strlen(tail) + 1);
-  if (out == NULL) return NULL;
-  strcpy(out, exe);
-  strcat(out, tail);
-  if (!is_dir(out)) {
-    free(out);
-    return NULL;
-  }
+#endif
   return out;
 }
 

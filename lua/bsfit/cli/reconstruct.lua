@@ -20,7 +20,7 @@ M.usage = [[
 usage: bsfit reconstruct [INPUT...] [options]
   INPUT            point files (CSV or whitespace text: x,y[,z][,w]); a directory
                    means every *.csv, *.txt, *.xy, *.xyz, *.dat, *.pts file in it.
-                   No INPUT: the demo set ($BSFIT_DEMO_DIR or tests/data/demo).
+                   No INPUT: the demo set ($BSFIT_DEMO_DIR, else the shipped one).
   -o OUTDIR        output directory (default bsfit-out)
   --strategy S     auto | carvalho | periodic | FILE.lua (default auto)
   --degree P       curve degree (default 3)
@@ -157,14 +157,17 @@ local function lua_dir()
   return f and f:gsub("/?bsfit/cli/reconstruct%.lua$", "")
 end
 
--- Where the demo set is: $BSFIT_DEMO_DIR, else <luadir>/../tests/data/demo.
+-- Where the demo set is: $BSFIT_DEMO_DIR, else <luadir>/../tests/data/demo (a source
+-- tree), else <luadir>/../../bsfit/demo (installed: P/share/lua/5.4 -> P/share/bsfit/demo).
 function M.demo_dir()
   local env = os.getenv("BSFIT_DEMO_DIR")
   if env and env ~= "" then return env end
   local d = lua_dir()
   if not d or d == "" or d == "." then return "../tests/data/demo" end
-  local up = d:match("^(.*)/[^/]+$")
-  return (up or ".") .. "/tests/data/demo"
+  local up = d:match("^(.*)/[^/]+$") or "."
+  local installed = (up:match("^(.*)/[^/]+$") or ".") .. "/bsfit/demo"
+  if not is_dir(up .. "/tests/data/demo") and is_dir(installed) then return installed end
+  return up .. "/tests/data/demo"
 end
 
 -- Input sections: {path = ..., name = ...}, names made unique by a suffix.
