@@ -6,7 +6,8 @@ set -euo pipefail
 
 pkgs=(build-essential cmake pkg-config lua5.4 liblua5.4-dev liblapacke-dev libopenblas-dev)
 if [ "${1:-}" = "--test" ]; then
-  pkgs+=(libcmocka-dev python3-scipy)
+  # luarocks: the rockspec test; man-db, groff-base: the man page test
+  pkgs+=(libcmocka-dev python3-scipy luarocks man-db groff-base)
 fi
 
 missing=()
