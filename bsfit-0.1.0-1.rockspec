@@ -5,8 +5,10 @@
 rockspec_format = "3.0"
 package = "bsfit"
 version = "0.1.0-1"
+-- `luarocks make` builds the checkout it runs in and never fetches `source`; the URL is where
+-- a published rock would be fetched from (set it when the repository is published).
 source = {
-  url = "git+https://github.com/bsfit/bsfit",
+  url = "git+https://example.invalid/bsfit.git",
   tag = "v0.1.0",
 }
 description = {
