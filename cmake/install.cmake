@@ -66,6 +66,12 @@ if(BSFIT_LUA_SOURCES)
 endif()
 install(DIRECTORY ${CMAKE_SOURCE_DIR}/lua/bsfit DESTINATION ${BSFIT_INSTALL_LUADIR})
 if(BSFIT_INSTALL_LUA_ONLY)
+  # LuaRocks builds `all`: only the module (and the static core it links) is needed
+  foreach(t bsfit bsfit_shared bsfit_lua)
+    if(TARGET ${t})
+      set_target_properties(${t} PROPERTIES EXCLUDE_FROM_ALL ON)
+    endif()
+  endforeach()
   return()
 endif()
 
