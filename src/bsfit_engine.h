@@ -117,7 +117,10 @@ BSFIT_API bsfit_err bsfit_engine_pcall(bsfit_engine *e, int nargs, int nresults)
 **                       Copied; the caller keeps ownership.
 ** @param[in]  m         number of points (>= 1).
 ** @param[in]  dim       2 or 3.
-** @param[in]  w         m per-point weights (opts.weights of the strategy), or NULL.
+** @param[in]  w         m per-point weights, or NULL. They mean what a point file's w
+**                       column means to `bsfit reconstruct`: the strategy's
+**                       `point_weights`, multiplying its weighting rule (they do not
+**                       replace it). All positive and finite.
 ** @param[in]  opts_lua  a Lua table constructor with the strategy's options, e.g.
 **                       "{ degree = 3, closed = true }", or NULL for {}. It is
 **                       evaluated as data: it sees no globals.
@@ -126,10 +129,13 @@ BSFIT_API bsfit_err bsfit_engine_pcall(bsfit_engine *e, int nargs, int nresults)
 **                       curve allocated with the C library's realloc, independent of
 **                       the engine. Release it with bsfit_curve_free. Empty on failure.
 ** @param[out] rep       the report, or NULL if not wanted.
-** @return BSFIT_OK; BSFIT_EINVAL (bad arguments, a strategy error, or `run` not
-**         returning a curve); BSFIT_EFORMAT (opts_lua or the strategy file does not
-**         parse); BSFIT_EIO (strategy file unreadable); BSFIT_EDIM (dim not 2 or 3);
-**         BSFIT_ENOMEM; BSFIT_EINTR. */
+** @return BSFIT_OK; the strategy's own code when `run` answers `nil, message, code`
+**         (code a name such as "ESINGULAR"; the message is the strategy's, prefixed
+**         with its name; EINVAL when the code names no bsfit_err); BSFIT_EINVAL (bad
+**         arguments, a strategy error, or `run` returning something not a curve);
+**         BSFIT_EFORMAT (opts_lua or the strategy file does not parse); BSFIT_EIO
+**         (strategy file unreadable); BSFIT_EDIM (dim not 2 or 3); BSFIT_ENOMEM;
+**         BSFIT_EINTR. */
 BSFIT_API bsfit_err bsfit_engine_fit(bsfit_engine *e, const char *strategy,
                                      const double *pts, size_t m, int dim, const double *w,
                                      const char *opts_lua, bsfit_curve *out,
@@ -163,6 +169,12 @@ BSFIT_API void bsfit_engine_get_opts(const bsfit_engine *e, bsfit_engine_opts *o
 
 /** The lua/ directory the engine put on its module path ("" if none was found). */
 BSFIT_API const char *bsfit_engine_luadir(const bsfit_engine *e);
+
+/** Opens bs.parallel (map, clock, cpus) and returns (pushes) its table: the C loader
+** of `require "bsfit.parallel"`. An engine preloads it and its `require "bsfit"`
+** sets the field `parallel` of the module; bsfit.so exports it for stock lua5.4.
+** bs.parallel.map raises in a sandboxed state. */
+BSFIT_API int luaopen_bsfit_parallel(struct lua_State *L);
 
 #ifdef __cplusplus
 }

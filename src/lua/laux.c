@@ -51,10 +51,14 @@ int bsfit__lua_result(lua_State *L, bsfit_err e, const bsfit_status *st, int nre
   return 3;
 }
 
+/* The host's interrupt flag travels with the allocator, so every core loop that
+** can run long on an object made here (a fitter's assembly, ...) sees it. */
 bsfit_allocator bsfit__lua_allocator(lua_State *L) {
   bsfit_allocator a;
   a.fn = (bsfit_alloc_fn)lua_getallocf(L, &a.ud);
-  a.interrupt = NULL;
+  lua_getfield(L, LUA_REGISTRYINDEX, BSFIT_LUA_INTERRUPT);
+  a.interrupt = (const volatile int *)lua_touserdata(L, -1); /* NULL when absent */
+  lua_pop(L, 1);
   return a;
 }
 
@@ -81,9 +85,53 @@ bsfit_scratch_ud *bsfit__lua_newscratch(lua_State *L) {
   if (luaL_newmetatable(L, BSFIT_SCRATCH_T)) {
     lua_pushcfunction(L, scratch_gc);
     lua_setfield(L, -2, "__gc");
+    bsfit__lua_protect_metatable(L, -1);
   }
   lua_setmetatable(L, -2);
   return s;
+}
+
+/* }==================================================================== */
+
+/* {====================================================================
+** The sandbox and protected metatables
+** ===================================================================== */
+
+BSFIT_API int bsfit_lua_sandboxed(lua_State *L) {
+  int on;
+  lua_getfield(L, LUA_REGISTRYINDEX, BSFIT_LUA_SANDBOX);
+  on = lua_toboolean(L, -1);
+  lua_pop(L, 1);
+  return on;
+}
+
+void bsfit__lua_check_files(lua_State *L, const char *what) {
+  if (bsfit_lua_sandboxed(L))
+    luaL_error(L, "%s: file access is not allowed in the sandbox", what);
+}
+
+/* getmetatable(obj) answers a fresh table holding only __name: scripts still read
+** the type name, but writing to it (a looping __gc, a changed method) changes
+** nothing that the binding uses. Finalizers run with hooks off, so a writable
+** __gc would be a way around the engine's limits. */
+void bsfit__lua_protect_metatable(lua_State *L, int mt) {
+  mt = lua_absindex(L, mt);
+  lua_createtable(L, 0, 1);
+  lua_getfield(L, mt, "__name");
+  lua_setfield(L, -2, "__name");
+  lua_setfield(L, mt, "__metatable");
+}
+
+void bsfit__lua_protect_metatables(lua_State *L) {
+  lua_pushnil(L);
+  while (lua_next(L, LUA_REGISTRYINDEX) != 0) {
+    if (lua_type(L, -2) == LUA_TSTRING && strncmp(lua_tostring(L, -2), "bsfit.", 6) == 0 &&
+        lua_istable(L, -1)) {
+      if (lua_getfield(L, -1, "__metatable") == LUA_TNIL) bsfit__lua_protect_metatable(L, -2);
+      lua_pop(L, 1);
+    }
+    lua_pop(L, 1); /* the value; the key stays for lua_next */
+  }
 }
 
 /* }==================================================================== */

@@ -444,6 +444,7 @@ static int surface_write(lua_State *L) {
   const char *path = luaL_checklstring(L, 2, &len);
   bsfit_status st;
   bsfit_err e;
+  bsfit__lua_check_files(L, "write");
   if (ends_with(path, len, ".json")) e = bsfit_surface_write_json(s, path, &st);
   else if (ends_with(path, len, ".iges") || ends_with(path, len, ".igs"))
     e = bsfit_surface_write_iges(s, path, &st);
