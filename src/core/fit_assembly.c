@@ -211,6 +211,18 @@ FIT_INLINE void walk_to(span_walk *sw, double x, double *lo, double *hi) {
   span_bounds(sw->U, sw->p, sw->last, sw->s, lo, hi);
 }
 
+/* The host's interrupt (bsfit_allocator.interrupt) is read when a span's group of
+** points starts and at least CHECK_POINTS points have passed since the last look:
+** one compare per group, so no measurable cost, and a stop within microseconds. A
+** kernel that sees it returns FIT_INTERRUPTED. */
+#define CHECK_POINTS 4096
+#define FIT_INTERRUPTED (-1)
+#define CHECK_INTERRUPT(f, k, next)                                        \
+  if ((k) >= (next)) {                                                     \
+    if (bsfit__interrupted(&(f)->alloc)) return FIT_INTERRUPTED;           \
+    (next) = (k) + CHECK_POINTS;                                           \
+  }
+
 /* }====================================================================== */
 
 /* {======================================================================
@@ -262,7 +274,7 @@ FIT_INLINE void flush_moments(bsfit_fitter *f, size_t s, const int p, const int 
 
 FIT_INLINE int moment_assemble(bsfit_fitter *f, const double *pts, size_t m, const int dim,
                                const double *u, const double *w, const int p) {
-  size_t k = 0, stride = bsfit__fit_poly_stride(p);
+  size_t k = 0, stride = bsfit__fit_poly_stride(p), next = CHECK_POINTS;
   span_walk sw;
   double wmin = 1.0; /* NaN is caught by the sums' finiteness check; subnormal: fit.c */
   int a, c;
@@ -271,6 +283,7 @@ FIT_INLINE int moment_assemble(bsfit_fitter *f, const double *pts, size_t m, con
     double x = walk_param(&sw, u, k), lo, hi, mid, scale;
     double M[2 * MOMENT_MAX_DEGREE + 1] = {0.0}, R[(MOMENT_MAX_DEGREE + 1) * 4] = {0.0};
     const double *C;
+    CHECK_INTERRUPT(f, k, next);
     walk_to(&sw, x, &lo, &hi);
     C = f->poly + (sw.s - (size_t)p) * stride;
     mid = C[(p + 1) * (p + 1)];
@@ -305,10 +318,10 @@ FIT_INLINE void resid_add(resid_acc *a, size_t k, double dd, double wk, double *
   if (r > a->max) a->max = r, a->imax = k;
 }
 
-FIT_INLINE void moment_residuals(const bsfit_fitter *f, const double *ctrl, const double *pts,
+FIT_INLINE int moment_residuals(const bsfit_fitter *f, const double *ctrl, const double *pts,
                                  size_t m, const int dim, const double *u, const double *w,
                                  const int p, double *res, resid_acc *out) {
-  size_t k = 0, stride = bsfit__fit_poly_stride(p);
+  size_t k = 0, stride = bsfit__fit_poly_stride(p), next = CHECK_POINTS;
   resid_acc acc = {0.0, 0.0, -1.0, 0};
   span_walk sw;
   int i, a, c;
@@ -317,6 +330,7 @@ FIT_INLINE void moment_residuals(const bsfit_fitter *f, const double *ctrl, cons
     double x = walk_param(&sw, u, k), lo, hi, mid, scale;
     double D[(MOMENT_MAX_DEGREE + 1) * 4];
     const double *C, *P;
+    CHECK_INTERRUPT(f, k, next);
     walk_to(&sw, x, &lo, &hi);
     C = f->poly + (sw.s - (size_t)p) * stride;
     P = ctrl + (sw.s - (size_t)p) * (size_t)dim;
@@ -343,6 +357,7 @@ FIT_INLINE void moment_residuals(const bsfit_fitter *f, const double *ctrl, cons
     } while (x >= lo && x < hi);
   }
   *out = acc;
+  return 0;
 }
 
 #if FIT_PAIRS
@@ -399,7 +414,7 @@ FIT_INLINE void cubic2_flush(bsfit_fitter *f, size_t s, const double *C, const d
 
 static int cubic2_assemble(bsfit_fitter *f, const double *pts, size_t m, const double *u,
                            const double *w) {
-  size_t k = 0, stride = bsfit__fit_poly_stride(3);
+  size_t k = 0, stride = bsfit__fit_poly_stride(3), next = CHECK_POINTS;
   span_walk sw;
   double wmin = 1.0; /* NaN is caught by the sums' finiteness check; subnormal: fit.c */
   walk_init(&sw, f);
@@ -408,6 +423,7 @@ static int cubic2_assemble(bsfit_fitter *f, const double *pts, size_t m, const d
     pair m01 = {0.0, 0.0}, m23 = m01, m45 = m01, m6 = m01, x01 = m01, x23 = m01, y01 = m01,
          y23 = m01;
     const double *C;
+    CHECK_INTERRUPT(f, k, next);
     walk_to(&sw, x, &lo, &hi);
     C = f->poly + (sw.s - 3) * stride;
     mid = C[16];
@@ -431,10 +447,10 @@ static int cubic2_assemble(bsfit_fitter *f, const double *pts, size_t m, const d
   return !(wmin >= DBL_MIN);
 }
 
-static void cubic2_residuals(const bsfit_fitter *f, const double *ctrl, const double *pts,
+static int cubic2_residuals(const bsfit_fitter *f, const double *ctrl, const double *pts,
                              size_t m, const double *u, const double *w, double *res,
                              resid_acc *out) {
-  size_t k = 0, stride = bsfit__fit_poly_stride(3);
+  size_t k = 0, stride = bsfit__fit_poly_stride(3), next = CHECK_POINTS;
   resid_acc acc = {0.0, 0.0, -1.0, 0};
   span_walk sw;
   int i, a;
@@ -443,6 +459,7 @@ static void cubic2_residuals(const bsfit_fitter *f, const double *ctrl, const do
     double x = walk_param(&sw, u, k), lo, hi, mid, scale;
     pair D[4];
     const double *C, *P;
+    CHECK_INTERRUPT(f, k, next);
     walk_to(&sw, x, &lo, &hi);
     C = f->poly + (sw.s - 3) * stride;
     P = ctrl + (sw.s - 3) * 2;
@@ -468,6 +485,7 @@ static void cubic2_residuals(const bsfit_fitter *f, const double *ctrl, const do
     } while (x >= lo && x < hi);
   }
   *out = acc;
+  return 0;
 }
 #endif
 
@@ -515,13 +533,14 @@ static int basis_assemble(bsfit_fitter *f, const double *pts, size_t m, int dim,
   double acc[(BSFIT_MAX_DEGREE + 1) * (BSFIT_MAX_DEGREE + 1)];
   double racc[(BSFIT_MAX_DEGREE + 1) * 4];
   double N[BSFIT_MAX_DEGREE + 1], wN[BSFIT_MAX_DEGREE + 1];
-  size_t k = 0;
+  size_t k = 0, next = CHECK_POINTS;
   span_walk sw;
   int p = f->p, badw = 0, i, j, c;
   walk_init(&sw, f);
   while (k < m) {
     double x = walk_param(&sw, u, k), lo, hi;
     const double *inv;
+    CHECK_INTERRUPT(f, k, next);
     walk_to(&sw, x, &lo, &hi);
     inv = f->inv + (sw.s - (size_t)p) * f->tri;
     memset(acc, 0, (size_t)((p + 1) * (p + 1)) * sizeof(double));
@@ -544,11 +563,11 @@ static int basis_assemble(bsfit_fitter *f, const double *pts, size_t m, int dim,
   return badw;
 }
 
-static void basis_residuals(const bsfit_fitter *f, const double *ctrl, const double *pts,
+static int basis_residuals(const bsfit_fitter *f, const double *ctrl, const double *pts,
                             size_t m, int dim, const double *u, const double *w, double *res,
                             resid_acc *out) {
   double N[BSFIT_MAX_DEGREE + 1];
-  size_t k = 0;
+  size_t k = 0, next = CHECK_POINTS;
   resid_acc acc = {0.0, 0.0, -1.0, 0};
   span_walk sw;
   int p = f->p, i, c;
@@ -556,6 +575,7 @@ static void basis_residuals(const bsfit_fitter *f, const double *ctrl, const dou
   while (k < m) {
     double x = walk_param(&sw, u, k), lo, hi;
     const double *inv, *P;
+    CHECK_INTERRUPT(f, k, next);
     walk_to(&sw, x, &lo, &hi);
     inv = f->inv + (sw.s - (size_t)p) * f->tri;
     P = ctrl + (sw.s - (size_t)p) * (size_t)dim;
@@ -574,6 +594,7 @@ static void basis_residuals(const bsfit_fitter *f, const double *ctrl, const dou
     } while (x >= lo && x < hi);
   }
   *out = acc;
+  return 0;
 }
 
 /* }====================================================================== */
@@ -596,21 +617,24 @@ int bsfit__fit_assemble(bsfit_fitter *f, const double *pts, size_t m, int dim, c
   return basis_assemble(f, pts, m, dim, u, w);
 }
 
-void bsfit__fit_residuals(const bsfit_fitter *f, const double *ctrl, const double *pts,
-                          size_t m, int dim, const double *u, const double *w, double *res,
-                          double *wrms, double *max, size_t *imax) {
+int bsfit__fit_residuals(const bsfit_fitter *f, const double *ctrl, const double *pts,
+                         size_t m, int dim, const double *u, const double *w, double *res,
+                         double *wrms, double *max, size_t *imax) {
   resid_acc acc;
-  int p = f->p;
+  int p = f->p, stop;
 #if FIT_PAIRS
-  if (p == 3 && dim == 2) cubic2_residuals(f, ctrl, pts, m, u, w, res, &acc);
+  if (p == 3 && dim == 2) stop = cubic2_residuals(f, ctrl, pts, m, u, w, res, &acc);
   else
 #endif
-  if (p == 3 && dim == 3) moment_residuals(f, ctrl, pts, m, 3, u, w, 3, res, &acc);
-  else if (p <= MOMENT_MAX_DEGREE) moment_residuals(f, ctrl, pts, m, dim, u, w, p, res, &acc);
-  else basis_residuals(f, ctrl, pts, m, dim, u, w, res, &acc);
+  if (p == 3 && dim == 3) stop = moment_residuals(f, ctrl, pts, m, 3, u, w, 3, res, &acc);
+  else if (p <= MOMENT_MAX_DEGREE)
+    stop = moment_residuals(f, ctrl, pts, m, dim, u, w, p, res, &acc);
+  else stop = basis_residuals(f, ctrl, pts, m, dim, u, w, res, &acc);
+  if (stop) return FIT_INTERRUPTED;
   *wrms = acc.wsum > 0.0 ? sqrt(acc.wss / acc.wsum) : 0.0;
   *max = acc.max < 0.0 ? 0.0 : acc.max;
   *imax = acc.imax;
+  return 0;
 }
 
 /* }====================================================================== */
