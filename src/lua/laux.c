@@ -8,6 +8,7 @@
 
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 /* {====================================================================
@@ -31,13 +32,44 @@ static int is_outcome(bsfit_err e) {
   }
 }
 
-static const char *message_of(bsfit_err e, const bsfit_status *st) {
-  if (st != NULL && st->code == e && st->msg[0] != '\0') return st->msg;
-  return bsfit_strerror(e);
+/* The core's messages name C functions where a Lua user has another name. */
+static const char *const lua_names[][2] = {
+  {"bsfit_filter_box_curve_delta", "bs.filter.box(C, {delta = d})"},
+  {"bsfit_filter_box_surface_delta", "bs.filter.box(S, {delta_u = du, delta_v = dv})"},
+};
+
+/* Pushes the message of a core status as a Lua user reads it: Lua names for C ones,
+** and knot spans counted from 1 as K:span counts them (the core's EEMPTYSPAN
+** messages count from 0: "knot span 3 [0.2, 0.4) holds no data"). Other indices are
+** checked by the binding before the core sees the data (bsfit__lua_checkfinite, ...). */
+static const char *push_message(lua_State *L, bsfit_err e, const bsfit_status *st) {
+  const char *msg = st != NULL && st->code == e && st->msg[0] != '\0' ? st->msg
+                                                                       : bsfit_strerror(e);
+  const char *at;
+  char *end;
+  unsigned long long i;
+  size_t k;
+  lua_pushstring(L, msg);
+  for (k = 0; k < sizeof lua_names / sizeof lua_names[0]; k++)
+    if (strstr(lua_tostring(L, -1), lua_names[k][0]) != NULL) {
+      luaL_gsub(L, lua_tostring(L, -1), lua_names[k][0], lua_names[k][1]);
+      lua_remove(L, -2);
+    }
+  msg = lua_tostring(L, -1);
+  at = e == BSFIT_EEMPTYSPAN ? strstr(msg, "knot span ") : NULL;
+  if (at == NULL) return msg;
+  at += strlen("knot span ");
+  i = strtoull(at, &end, 10);
+  if (end == at) return msg;
+  lua_pushlstring(L, msg, (size_t)(at - msg));
+  lua_pushfstring(L, "%I%s", (lua_Integer)(i + 1), end);
+  lua_concat(L, 2);
+  lua_remove(L, -2);
+  return lua_tostring(L, -1);
 }
 
 int bsfit__lua_raise(lua_State *L, bsfit_err e, const bsfit_status *st, int arg) {
-  const char *msg = message_of(e, st);
+  const char *msg = push_message(L, e, st);
   if (arg > 0) return luaL_argerror(L, arg, msg);
   return luaL_error(L, "%s", msg);
 }
@@ -46,7 +78,7 @@ int bsfit__lua_result(lua_State *L, bsfit_err e, const bsfit_status *st, int nre
   if (e == BSFIT_OK) return nret;
   if (!is_outcome(e)) return bsfit__lua_raise(L, e, st, arg);
   luaL_pushfail(L);
-  lua_pushstring(L, message_of(e, st));
+  push_message(L, e, st);
   lua_pushstring(L, bsfit_errname(e));
   return 3;
 }
@@ -252,6 +284,36 @@ void bsfit__lua_checkfinite(lua_State *L, int arg, const bsfit_points_ud *P) {
     if (!isfinite(P->xy[i]))
       luaL_argerror(L, arg, lua_pushfstring(L, "point %I has a non-finite coordinate",
                                             (lua_Integer)(i / P->dim) + 1));
+}
+
+void bsfit__lua_checkknotvalues(lua_State *L, int arg, const double *U, size_t n, int p) {
+  size_t i, run = 1;
+  for (i = 0; i < n; i++)
+    if (!isfinite(U[i]))
+      luaL_argerror(L, arg, lua_pushfstring(L, "knot %I is not finite", (lua_Integer)i + 1));
+  for (i = 1; i < n; i++) {
+    if (U[i] < U[i - 1])
+      luaL_argerror(L, arg, lua_pushfstring(L, "knots decrease at knot %I (%s < %s)",
+                                            (lua_Integer)i + 1, number_text(L, U[i]),
+                                            number_text(L, U[i - 1])));
+    run = U[i] == U[i - 1] ? run + 1 : 1;
+    if (p >= 0 && run == (size_t)p + 2)
+      luaL_argerror(L, arg, lua_pushfstring(L, "knots %I..%I equal %s: multiplicity above "
+                                            "degree+1 = %d", (lua_Integer)(i + 2 - run),
+                                            (lua_Integer)i + 1, number_text(L, U[i]), p + 1));
+  }
+}
+
+void bsfit__lua_checkparams(lua_State *L, int arg, const double *u, size_t n) {
+  size_t i;
+  for (i = 0; i < n; i++)
+    if (!isfinite(u[i]))
+      luaL_argerror(L, arg, lua_pushfstring(L, "parameter %I is not finite", (lua_Integer)i + 1));
+  for (i = 1; i < n; i++)
+    if (u[i] < u[i - 1])
+      luaL_argerror(L, arg, lua_pushfstring(L, "parameters decrease at parameter %I (%s < %s)",
+                                            (lua_Integer)i + 1, number_text(L, u[i]),
+                                            number_text(L, u[i - 1])));
 }
 
 void bsfit__lua_checkweights(lua_State *L, int arg, const double *w, size_t n) {

@@ -148,6 +148,12 @@ size_t bsfit__lua_checkcount(lua_State *L, int arg, lua_Integer lo, lua_Integer 
 **   `weight 2 is -1 (must be positive and finite)` */
 void bsfit__lua_checkfinite(lua_State *L, int arg, const bsfit_points_ud *P);
 void bsfit__lua_checkweights(lua_State *L, int arg, const double *w, size_t n);
+/* n knot values: finite, non-decreasing and, when p >= 0, no value more than p + 1
+** times (`knot 3 is not finite`, `knots decrease at knot 5 (0.5 < 1)`,
+** `knots 1..3 equal 0: multiplicity above degree+1 = 2`). */
+void bsfit__lua_checkknotvalues(lua_State *L, int arg, const double *U, size_t n, int p);
+/* n parameters: finite and non-decreasing (`parameter 2 is not finite`). */
+void bsfit__lua_checkparams(lua_State *L, int arg, const double *u, size_t n);
 
 /* }==================================================================== */
 

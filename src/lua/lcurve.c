@@ -116,6 +116,7 @@ static int curve_new(lua_State *L) {
     return luaL_argerror(L, 1, lua_pushfstring(L, "%d weights for %d control points", (int)w->n, (int)P->n));
   bsfit__lua_checkfinite(L, 1, P); /* 1-based messages before the core's 0-based ones */
   if (w) bsfit__lua_checkweights(L, 1, w->x, w->n);
+  if (U) bsfit__lua_checkknotvalues(L, 1, U->x, U->n, periodic ? -1 : p);
   if (P->n < (size_t)p + 1)
     return luaL_argerror(L, 1, lua_pushfstring(L, "degree %d needs at least %d control points, got %d",
                                                 p, p + 1, (int)P->n));
