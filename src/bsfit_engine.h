@@ -32,10 +32,15 @@ typedef struct bsfit_engine bsfit_engine;
 typedef struct bsfit_engine_opts {
   /** Non-zero: only the base, table, string, math, utf8 and coroutine libraries;
   ** no io, os, debug, dofile, loadfile, no C modules; `load` only accepts text
-  ** chunks; `require` only finds `bsfit` and the .lua modules of the lua/ directory;
-  ** setmetatable refuses a __gc field (Lua runs finalizers with hooks off, so no
-  ** limit could stop one). C code in the standard library is not counted by the
-  ** instruction budget: a pathological string.find pattern can still run long. */
+  ** chunks; `require` only finds `bsfit` and the .lua modules of the lua/ directory
+  ** (package keeps loaded, preload and searchers: no searchpath, loadlib, cpath);
+  ** setmetatable refuses a __gc field and bsfit's metatables are protected (Lua
+  ** runs finalizers with hooks off, so no limit could stop one); an xpcall message
+  ** handler is not run once the call is stopping; bsfit's file functions and
+  ** bs.parallel.map raise. The engine records it in the registry field
+  ** BSFIT_LUA_SANDBOX (bsfit_lua.h), which every layer reads. C code is not counted
+  ** by the instruction budget: a pathological string.find pattern can still run
+  ** long (docs/embedding.md says what the sandbox does not guarantee). */
   int sandbox;
   /** Maximum bytes the Lua state may hold at once (0 = no limit). An allocation
   ** beyond it fails, which Lua turns into a "not enough memory" error and the
@@ -147,7 +152,9 @@ BSFIT_API bsfit_err bsfit_engine_fit(bsfit_engine *e, const char *strategy,
 BSFIT_API const char *bsfit_engine_errmsg(const bsfit_engine *e);
 
 /** Asks the running call to stop: it fails with BSFIT_EINTR at the next Lua
-** instruction it executes (C kernels are not interrupted). Async-signal-safe, and
+** instruction it executes, or sooner inside a C kernel that looks at the flag (the
+** fitter's loops do, every few thousand points, through the bsfit_allocator of the
+** objects the binding makes: registry field BSFIT_LUA_INTERRUPT). Async-signal-safe, and
 ** may be called from another thread (it only stores a flag and sets a hook, as
 ** lua.c's SIGINT handler does). An interrupt that arrives while no call runs is
 ** forgotten when the next call starts. NULL-safe. */
