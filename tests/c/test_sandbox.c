@@ -397,37 +397,45 @@ static const char *const fit_run =
     "assert(C and rep.rms < 1e-3, 'fit failed')\n"
     "done = true\n";
 
-/* One solver: the fit's time, then the same fit interrupted a third of the way in. */
-static void interrupt_fit(bsfit_engine *e, const char *solver) {
+/* The fit interrupted t_fit / 3 after it starts, by another thread: the code, and
+** how long after the interrupt the call returned (seconds). */
+static double interrupted_fit(bsfit_engine *e, double t_fit) {
   lua_State *L = bsfit_engine_lua(e);
-  double t_fit, t_end, latency;
-  stopper s = {e, 0, &fit_started, 0};
+  stopper s = {e, t_fit / 3, &fit_started, 0};
   pthread_t t;
   bsfit_err code;
-  lua_pushstring(L, solver);
-  lua_setglobal(L, "solver");
-  /* the fit's own time, uninterrupted */
-  assert_int_equal(bsfit_engine_run_string(e, fit_run, "=fit"), BSFIT_OK);
-  t_fit = now() - t_started;
-  /* the same fit, interrupted a third of the way in by another thread */
+  double t_end;
   atomic_store(&fit_started, 0);
-  s.delay = t_fit / 3;
   assert_int_equal(bsfit_engine_run_string(e, "done = false", NULL), BSFIT_OK);
   assert_int_equal(pthread_create(&t, NULL, interrupt_after, &s), 0);
   code = bsfit_engine_run_string(e, fit_run, "=fit");
   t_end = now();
   assert_int_equal(pthread_join(t, NULL), 0);
-  latency = t_end - s.t_stop;
-  print_message("%s fit of 1e7 points: %.1f ms; stopped %.3f ms after the interrupt\n", solver,
-                t_fit * 1e3, latency * 1e3);
   assert_int_equal(code, BSFIT_EINTR);
   assert_msg_has(e, "interrupted");
-  /* the C loop saw the flag: the call ended a small fraction of the fit's time after
-  ** the interrupt (a fit that ran to its end would take the remaining two thirds) */
-  assert_true(latency < 0.1 * t_fit);
   lua_getglobal(L, "done");
   assert_false(lua_toboolean(L, -1));
   lua_pop(L, 1);
+  return t_end - s.t_stop;
+}
+
+/* One solver: the fit's own time, then the same fit interrupted a third of the way
+** in. The C loop must see the flag: the call ends a small fraction of the fit's time
+** after the interrupt, where a fit that ran to its end would take two thirds more.
+** Best of three tries, so that a busy machine's scheduling is not the measure. */
+static void interrupt_fit(bsfit_engine *e, const char *solver) {
+  lua_State *L = bsfit_engine_lua(e);
+  double t_fit, latency = INFINITY;
+  int k;
+  lua_pushstring(L, solver);
+  lua_setglobal(L, "solver");
+  assert_int_equal(bsfit_engine_run_string(e, fit_run, "=fit"), BSFIT_OK);
+  t_fit = now() - t_started;
+  for (k = 0; k < 3 && !(latency < 0.05 * t_fit); k++)
+    latency = fmin(latency, interrupted_fit(e, t_fit));
+  print_message("%s fit of 1e7 points: %.1f ms; stopped %.3f ms after the interrupt\n", solver,
+                t_fit * 1e3, latency * 1e3);
+  assert_true(latency < 0.1 * t_fit);
   /* the engine works again: the same fit runs to the end */
   assert_int_equal(bsfit_engine_run_string(e, fit_run, "=fit"), BSFIT_OK);
   still_works(e);
