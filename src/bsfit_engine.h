@@ -139,7 +139,9 @@ BSFIT_API bsfit_err bsfit_engine_pcall(bsfit_engine *e, int nargs, int nresults)
 **         with its name; EINVAL when the code names no bsfit_err); BSFIT_EINVAL (bad
 **         arguments, a strategy error, or `run` returning something not a curve);
 **         BSFIT_EFORMAT (opts_lua or the strategy file does not parse); BSFIT_EIO
-**         (strategy file unreadable); BSFIT_EDIM (dim not 2 or 3); BSFIT_ENOMEM;
+**         (strategy file unreadable); BSFIT_EDIM (dim not 2 or 3); BSFIT_ENONFINITE
+**         (a NaN or Inf in pts) and BSFIT_EWEIGHT (a weight not positive and finite),
+**         both naming the array element, before any Lua runs; BSFIT_ENOMEM;
 **         BSFIT_EINTR. */
 BSFIT_API bsfit_err bsfit_engine_fit(bsfit_engine *e, const char *strategy,
                                      const double *pts, size_t m, int dim, const double *w,

@@ -766,6 +766,21 @@ static int pfit(lua_State *L) {
   return 1;
 }
 
+/* The host's arrays, checked before any Lua runs: the message names the C element. */
+static bsfit_err check_fit_data(bsfit_engine *e, const double *pts, size_t m, int dim,
+                                const double *w) {
+  size_t i;
+  for (i = 0; i < m * (size_t)dim; i++)
+    if (!isfinite(pts[i]))
+      return fail(e, BSFIT_ENONFINITE, "bsfit_engine_fit: pts[%zu] = %g (point %zu) is not finite",
+                  i, pts[i], i / (size_t)dim);
+  for (i = 0; w != NULL && i < m; i++)
+    if (!(w[i] > 0.0 && isfinite(w[i])))
+      return fail(e, BSFIT_EWEIGHT, "bsfit_engine_fit: w[%zu] = %g (weights must be positive and "
+                  "finite)", i, w[i]);
+  return BSFIT_OK;
+}
+
 bsfit_err bsfit_engine_fit(bsfit_engine *e, const char *strategy, const double *pts, size_t m,
                            int dim, const double *w, const char *opts_lua, bsfit_curve *out,
                            bsfit_engine_report *rep) {
@@ -781,6 +796,8 @@ bsfit_err bsfit_engine_fit(bsfit_engine *e, const char *strategy, const double *
     return fail(e, BSFIT_EDIM, "bsfit_engine_fit: dim = %d, must be 2 or 3", dim);
   if (m > SIZE_MAX / (3 * sizeof(double)))
     return fail(e, BSFIT_EINVAL, "bsfit_engine_fit: m = %zu is too large", m);
+  code = check_fit_data(e, pts, m, dim, w);
+  if (code != BSFIT_OK) return code;
   memset(&fa, 0, sizeof fa);
   fa.strategy = strategy;
   fa.pts = pts;

@@ -556,6 +556,23 @@ static void test_fit_errors(void **state) {
   assert_int_equal(bsfit_engine_fit(e, STRATEGY, NULL, NPTS, 2, NULL, NULL, &c, NULL), BSFIT_EINVAL);
   assert_int_equal(bsfit_engine_fit(e, NULL, pts, NPTS, 2, NULL, NULL, &c, NULL), BSFIT_EINVAL);
   assert_int_equal(bsfit_engine_fit(e, STRATEGY, pts, NPTS, 2, NULL, NULL, NULL, NULL), BSFIT_EINVAL);
+  /* bad host data is named by its C element before any Lua runs */
+  {
+    double bad[2 * NPTS], w[NPTS];
+    size_t i;
+    memcpy(bad, pts, sizeof bad);
+    bad[7] = NAN;
+    assert_int_equal(bsfit_engine_fit(e, STRATEGY, bad, NPTS, 2, NULL, NULL, &c, NULL),
+                     BSFIT_ENONFINITE);
+    assert_msg_has(e, "pts[7] = nan (point 3) is not finite");
+    for (i = 0; i < NPTS; i++) w[i] = 1.0;
+    w[4] = -2;
+    assert_int_equal(bsfit_engine_fit(e, STRATEGY, pts, NPTS, 2, w, NULL, &c, NULL), BSFIT_EWEIGHT);
+    assert_msg_has(e, "w[4] = -2");
+    w[4] = INFINITY;
+    assert_int_equal(bsfit_engine_fit(e, STRATEGY, pts, NPTS, 2, w, NULL, &c, NULL), BSFIT_EWEIGHT);
+    assert_null(c.ctrl);
+  }
   /* the strategy raises: its file:line comes back */
   assert_int_equal(bsfit_engine_fit(e, STRATEGY, pts, NPTS, 2, NULL, "{fail = true}", &c, NULL),
                    BSFIT_EINVAL);
