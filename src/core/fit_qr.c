@@ -329,14 +329,16 @@ bsfit_err bsfit__qr_factor(bsfit_fitter *f, const double *pts, size_t m, int dim
   for (t = 0; t < m; t++) {
     size_t k = order ? order[t] : (rot + t < m ? rot + t : rot + t - m), j0;
     double x = row_param(f, u, k), wk = w ? w[k] : 1.0;
-    if (t % 4096 == 0 && bsfit__interrupted(&f->alloc)) /* the host's stop, now and then */
-      return bsfit__fail(st, BSFIT_EINTR, "fit of %zu points interrupted", m);
     *badw |= !(wk >= DBL_MIN); /* as the assembly: see fit.c's input_error */
     if (!(x >= f->U[s] && x < f->U[s + 1])) s = bsfit_knots_find_span(f->U, f->nraw, f->p, x);
     f->occ[s - p] = 1;
     if (f->p == 3) span_basis(f, s, x, 3, N);
     else span_basis(f, s, x, f->p, N);
-    if (s != blk_span || blk.k == CHUNK) flush_block(&S, &blk);
+    if (s != blk_span || blk.k == CHUNK) {
+      if (bsfit__interrupted(&f->alloc)) /* the host's stop, at each block */
+        return bsfit__fail(st, BSFIT_EINTR, "fit of %zu points interrupted", m);
+      flush_block(&S, &blk);
+    }
     blk_span = s;
     row = blk.x + blk.k * blk.width;
     if (plain_span(f, fx, s)) {
