@@ -313,6 +313,17 @@ static void test_memory_cap(void **state) {
   for (i = 0; i < sizeof bombs / sizeof bombs[0]; i++) expect(e, bombs[i], BSFIT_ENOMEM, NULL);
   /* a script may catch a memory error and go on: the memory was never given */
   expect(e, "local ok = pcall(string.rep, 'x', 1 << 30) assert(not ok) x = 1", BSFIT_OK, NULL);
+  /* unbounded recursion ends in Lua's stack overflow or the cap, not a crash */
+  {
+    bsfit_err got = bsfit_engine_run_string(e, "local function f(n) return 1 + f(n + 1) end f(1)",
+                                            "=hostile");
+    assert_true(got == BSFIT_EINVAL || got == BSFIT_ENOMEM);
+    still_works(e);
+    got = bsfit_engine_run_string(e, "local function f() return coroutine.wrap(f)() end f()",
+                                  "=hostile");
+    assert_true(got == BSFIT_EINVAL || got == BSFIT_ENOMEM);
+    still_works(e);
+  }
   /* string.rep beyond what a string can hold is an error, not a crash */
   expect(e, "string.rep('ab', math.maxinteger)", BSFIT_EINVAL, "too large");
   bsfit_engine_free(e);
