@@ -433,8 +433,9 @@ static double interrupted_fit(bsfit_engine *e, double t_fit) {
 /* One solver: the fit's own time, then the same fit interrupted a third of the way
 ** in. The C loop must see the flag: the call ends a small fraction of the fit's time
 ** after the interrupt, where a fit that ran to its end would take two thirds more.
-** Best of three tries, so that a busy machine's scheduling is not the measure. */
-static void interrupt_fit(bsfit_engine *e, const char *solver) {
+** Best of three tries, so that a busy machine's scheduling is not the measure. With
+** rerun, the same fit then runs to its end on the same engine. */
+static void interrupt_fit(bsfit_engine *e, const char *solver, int rerun) {
   lua_State *L = bsfit_engine_lua(e);
   double t_fit, latency = INFINITY;
   int k;
@@ -447,8 +448,7 @@ static void interrupt_fit(bsfit_engine *e, const char *solver) {
   print_message("%s fit of 1e7 points: %.1f ms; stopped %.3f ms after the interrupt\n", solver,
                 t_fit * 1e3, latency * 1e3);
   assert_true(latency < 0.1 * t_fit);
-  /* the engine works again: the same fit runs to the end */
-  assert_int_equal(bsfit_engine_run_string(e, fit_run, "=fit"), BSFIT_OK);
+  if (rerun) assert_int_equal(bsfit_engine_run_string(e, fit_run, "=fit"), BSFIT_OK);
   still_works(e);
 }
 
@@ -460,8 +460,8 @@ static void test_interrupt_c_fit(void **state) {
   lua_setglobal(L, "mark");
   if (bsfit_engine_run_string(e, fit_setup, "=setup") != BSFIT_OK)
     fail_msg("setup: %s", bsfit_engine_errmsg(e));
-  interrupt_fit(e, "cholesky");
-  interrupt_fit(e, "qr");
+  interrupt_fit(e, "cholesky", 1);
+  interrupt_fit(e, "qr", 0); /* 17 s a fit under the sanitizers: no second full run */
   bsfit_engine_free(e);
 }
 
