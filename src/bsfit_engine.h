@@ -32,10 +32,15 @@ typedef struct bsfit_engine bsfit_engine;
 typedef struct bsfit_engine_opts {
   /** Non-zero: only the base, table, string, math, utf8 and coroutine libraries;
   ** no io, os, debug, dofile, loadfile, no C modules; `load` only accepts text
-  ** chunks; `require` only finds `bsfit` and the .lua modules of the lua/ directory;
-  ** setmetatable refuses a __gc field (Lua runs finalizers with hooks off, so no
-  ** limit could stop one). C code in the standard library is not counted by the
-  ** instruction budget: a pathological string.find pattern can still run long. */
+  ** chunks; `require` only finds `bsfit` and the .lua modules of the lua/ directory
+  ** (package keeps loaded, preload and searchers: no searchpath, loadlib, cpath);
+  ** setmetatable refuses a __gc field and bsfit's metatables are protected (Lua
+  ** runs finalizers with hooks off, so no limit could stop one); an xpcall message
+  ** handler is not run once the call is stopping; bsfit's file functions and
+  ** bs.parallel.map raise. The engine records it in the registry field
+  ** BSFIT_LUA_SANDBOX (bsfit_lua.h), which every layer reads. C code is not counted
+  ** by the instruction budget: a pathological string.find pattern can still run
+  ** long (docs/embedding.md says what the sandbox does not guarantee). */
   int sandbox;
   /** Maximum bytes the Lua state may hold at once (0 = no limit). An allocation
   ** beyond it fails, which Lua turns into a "not enough memory" error and the
@@ -118,7 +123,10 @@ BSFIT_API bsfit_err bsfit_engine_pcall(bsfit_engine *e, int nargs, int nresults)
 **                       Copied; the caller keeps ownership.
 ** @param[in]  m         number of points (>= 1).
 ** @param[in]  dim       2 or 3.
-** @param[in]  w         m per-point weights (opts.weights of the strategy), or NULL.
+** @param[in]  w         m per-point weights, or NULL. They mean what a point file's w
+**                       column means to `bsfit reconstruct`: the strategy's
+**                       `point_weights`, multiplying its weighting rule (they do not
+**                       replace it). All positive and finite.
 ** @param[in]  opts_lua  a Lua table constructor with the strategy's options, e.g.
 **                       "{ degree = 3, closed = true }", or NULL for {}. It is
 **                       evaluated as data: it sees no globals.
@@ -127,10 +135,15 @@ BSFIT_API bsfit_err bsfit_engine_pcall(bsfit_engine *e, int nargs, int nresults)
 **                       curve allocated with the C library's realloc, independent of
 **                       the engine. Release it with bsfit_curve_free. Empty on failure.
 ** @param[out] rep       the report, or NULL if not wanted.
-** @return BSFIT_OK; BSFIT_EINVAL (bad arguments, a strategy error, or `run` not
-**         returning a curve); BSFIT_EFORMAT (opts_lua or the strategy file does not
-**         parse); BSFIT_EIO (strategy file unreadable); BSFIT_EDIM (dim not 2 or 3);
-**         BSFIT_ENOMEM; BSFIT_EINTR. */
+** @return BSFIT_OK; the strategy's own code when `run` answers `nil, message, code`
+**         (code a name such as "ESINGULAR"; the message is the strategy's, prefixed
+**         with its name; EINVAL when the code names no bsfit_err); BSFIT_EINVAL (bad
+**         arguments, a strategy error, or `run` returning something not a curve);
+**         BSFIT_EFORMAT (opts_lua or the strategy file does not parse); BSFIT_EIO
+**         (strategy file unreadable); BSFIT_EDIM (dim not 2 or 3); BSFIT_ENONFINITE
+**         (a NaN or Inf in pts) and BSFIT_EWEIGHT (a weight not positive and finite),
+**         both naming the array element, before any Lua runs; BSFIT_ENOMEM;
+**         BSFIT_EINTR. */
 BSFIT_API bsfit_err bsfit_engine_fit(bsfit_engine *e, const char *strategy,
                                      const double *pts, size_t m, int dim, const double *w,
                                      const char *opts_lua, bsfit_curve *out,
@@ -142,7 +155,9 @@ BSFIT_API bsfit_err bsfit_engine_fit(bsfit_engine *e, const char *strategy,
 BSFIT_API const char *bsfit_engine_errmsg(const bsfit_engine *e);
 
 /** Asks the running call to stop: it fails with BSFIT_EINTR at the next Lua
-** instruction it executes (C kernels are not interrupted). Async-signal-safe, and
+** instruction it executes, or sooner inside a C kernel that looks at the flag (the
+** fitter's loops do, every few thousand points, through the bsfit_allocator of the
+** objects the binding makes: registry field BSFIT_LUA_INTERRUPT). Async-signal-safe, and
 ** may be called from another thread (it only stores a flag and sets a hook, as
 ** lua.c's SIGINT handler does). An interrupt that arrives while no call runs is
 ** forgotten when the next call starts. NULL-safe. */
@@ -164,6 +179,12 @@ BSFIT_API void bsfit_engine_get_opts(const bsfit_engine *e, bsfit_engine_opts *o
 
 /** The lua/ directory the engine put on its module path ("" if none was found). */
 BSFIT_API const char *bsfit_engine_luadir(const bsfit_engine *e);
+
+/** Opens bs.parallel (map, clock, cpus) and returns (pushes) its table: the C loader
+** of `require "bsfit.parallel"`. An engine preloads it and its `require "bsfit"`
+** sets the field `parallel` of the module; bsfit.so exports it for stock lua5.4.
+** bs.parallel.map raises in a sandboxed state. */
+BSFIT_API int luaopen_bsfit_parallel(struct lua_State *L);
 
 #ifdef __cplusplus
 }

@@ -10,6 +10,20 @@
 
 #include <lua.h>
 
+/* Registry fields a host sets before it opens the module (the engine does, see
+** bsfit_engine.h); the binding only reads them.
+** BSFIT_LUA_SANDBOX: `true` when the state is sandboxed. It is the one place the
+**   sandbox is known: the binding refuses file access and bs.parallel.map, the
+**   command line refuses subcommands, all by reading it (bsfit_lua_sandboxed).
+** BSFIT_LUA_INTERRUPT: a light userdata pointing at the host's `volatile int`
+**   interrupt flag; the binding gives it to the core's long loops through the
+**   bsfit_allocator of every object it creates (non-zero: stop, BSFIT_EINTR). */
+#define BSFIT_LUA_SANDBOX "bsfit.sandbox"
+#define BSFIT_LUA_INTERRUPT "bsfit.interrupt"
+
+/** Non-zero when the registry field BSFIT_LUA_SANDBOX of L is true. */
+BSFIT_API int bsfit_lua_sandboxed(lua_State *L);
+
 /** Opens the bsfit module: returns (pushes) its table. Use with luaL_requiref or as
 ** the C loader of `require "bsfit"`. Sets no globals. */
 BSFIT_API int luaopen_bsfit(lua_State *L);

@@ -10,12 +10,14 @@
 
 #include "bsfit.h"
 #include "bsfit_engine.h"
+#include "bsfit_lua.h"
 
 #include <lauxlib.h>
 #include <lua.h>
 #include <lualib.h>
 
 #include <errno.h>
+#include <math.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -67,7 +69,7 @@ static void print_usage(FILE *f) {
           "  -W               turn warnings on\n"
           "  --sandbox        run without io, os, debug, C modules and bytecode\n"
           "  --mem-limit N    cap the Lua heap at N bytes (suffixes k, m, g)\n"
-          "  --instr-limit N  stop any script after N Lua instructions\n"
+          "  --instr-limit N  stop any call after N Lua instructions (e.g. 1e8)\n"
           "  --version        print the version and exit\n"
           "  -h, --help       print this help and exit (COMMAND --help: the command's)\n"
           "  --               stop handling options\n"
@@ -102,13 +104,20 @@ static int report(cli *c, bsfit_err code) {
 ** Arguments (lua.c's collectargs, plus our long options)
 ** ===================================================================== */
 
-/* Parses a byte count with an optional k/m/g suffix; 0 on error. */
+/* Parses a count with an optional k/m/g suffix (powers of 1024), written as an
+** integer or in exponent notation (1e8, 2.5e6: a whole number); 0 on error. */
 static size_t parse_size(const char *s) {
   char *end;
   unsigned long long v;
+  double d;
   errno = 0;
   v = strtoull(s, &end, 10);
   if (errno != 0 || end == s || s[0] == '-') return 0;
+  if (*end == '.' || *end == 'e' || *end == 'E') {
+    d = strtod(s, &end);
+    if (errno != 0 || !(d >= 1 && d < 1.8e19) || d != floor(d)) return 0;
+    v = (unsigned long long)d;
+  }
   switch (*end) {
     case 'k': case 'K': v <<= 10; end++; break;
     case 'm': case 'M': v <<= 20; end++; break;
@@ -377,6 +386,12 @@ static int pmain(lua_State *L) {
     const char *word = c->argv[c->script];
     int after_dashes = strcmp(c->argv[c->script - 1], "--") == 0;
     if (!after_dashes && is_word(word) && has_command(c, word)) {
+      if (bsfit_lua_sandboxed(L)) { /* the engine's flag: commands read and write files */
+        fprintf(stderr, PROGNAME ": '%s' reads and writes files: not available with --sandbox\n",
+                word);
+        c->status = EXIT_FAILURE;
+        return 0;
+      }
       handle_command(c, word);
       return 0;
     }

@@ -416,6 +416,7 @@ static int all_coincide(const double *pts, size_t m, int dim) {
 static bsfit_err assemble_checked(bsfit_fitter *f, const double *pts, size_t m, int dim,
                                   const double *u, const double *w, bsfit_status *st) {
   int badw = bsfit__fit_assemble(f, pts, m, dim, u, w);
+  if (badw < 0) return bsfit__fail(st, BSFIT_EINTR, "fit of %zu points interrupted", m);
   if (badw || !bsfit__all_finite(f->band, (size_t)(f->p + 1) * f->nraw) ||
       !bsfit__all_finite(f->rhs, (size_t)dim * f->nraw))
     return input_error(pts, m, dim, u, w, st);
@@ -496,7 +497,8 @@ static bsfit_err fit_body(bsfit_fitter *f, const double *pts, size_t m, int dim,
     rep->solver = used;
   }
   if (rep == NULL && res == NULL) return bsfit__ok(st); /* nobody reads the residuals */
-  bsfit__fit_residuals(f, out->ctrl, pts, m, dim, u, w, res, &rms, &max, &imax);
+  if (bsfit__fit_residuals(f, out->ctrl, pts, m, dim, u, w, res, &rms, &max, &imax) != 0)
+    return bsfit__fail(st, BSFIT_EINTR, "fit of %zu points interrupted", m);
   if (rep) {
     rep->rms = rms;
     rep->max = max;

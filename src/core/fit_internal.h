@@ -157,14 +157,16 @@ size_t bsfit__fit_poly_stride(int p);
 ** differences (`inv`, higher degrees). */
 void bsfit__fit_prepare_spans(bsfit_fitter *f);
 /* Assembly: band, rhs (raw unknowns), occupancy; returns nonzero when a weight is <= 0
-** or NaN. Other non-finite input shows up as non-finite band or rhs entries. */
+** or NaN, negative when the allocator's interrupt flag stopped it (the band is then
+** incomplete). Other non-finite input shows up as non-finite band or rhs entries. */
 int bsfit__fit_assemble(bsfit_fitter *f, const double *pts, size_t m, int dim, const double *u,
                         const double *w);
 /* Residual pass with the solved (raw) control points: distances into res (may be NULL),
-** weighted RMS, maximum and its index. */
-void bsfit__fit_residuals(const bsfit_fitter *f, const double *ctrl, const double *pts,
-                          size_t m, int dim, const double *u, const double *w, double *res,
-                          double *wrms, double *max, size_t *imax);
+** weighted RMS, maximum and its index. Returns 0, or negative when the allocator's
+** interrupt flag stopped it (outputs unset). */
+int bsfit__fit_residuals(const bsfit_fitter *f, const double *ctrl, const double *pts,
+                         size_t m, int dim, const double *u, const double *w, double *res,
+                         double *wrms, double *max, size_t *imax);
 /* periodic.c: folds the raw system and solves it; writes the N distinct control points,
 ** row-major, into ctrl; *rcond when rcond != NULL. */
 bsfit_err bsfit__periodic_solve(bsfit_fitter *f, int dim, double *ctrl, double *rcond,

@@ -334,7 +334,11 @@ bsfit_err bsfit__qr_factor(bsfit_fitter *f, const double *pts, size_t m, int dim
     f->occ[s - p] = 1;
     if (f->p == 3) span_basis(f, s, x, 3, N);
     else span_basis(f, s, x, f->p, N);
-    if (s != blk_span || blk.k == CHUNK) flush_block(&S, &blk);
+    if (s != blk_span || blk.k == CHUNK) {
+      if (bsfit__interrupted(&f->alloc)) /* the host's stop, at each block */
+        return bsfit__fail(st, BSFIT_EINTR, "fit of %zu points interrupted", m);
+      flush_block(&S, &blk);
+    }
     blk_span = s;
     row = blk.x + blk.k * blk.width;
     if (plain_span(f, fx, s)) {

@@ -19,7 +19,6 @@
 
 #include <limits.h>
 #include <math.h>
-#include <signal.h>
 #include <stdarg.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -44,7 +43,8 @@ struct bsfit_engine {
   unsigned long long left;   /* instructions left in the current call */
   int armed;                 /* count the hook is armed with */
   int tripped;               /* the budget ran out in the current call */
-  volatile sig_atomic_t interrupted;
+  volatile int interrupted;  /* an int (the core's bsfit_allocator.interrupt reads it);
+                                ** storing an int is atomic on every platform bsfit runs on */
   int sandbox;
   int depth;                 /* nesting of docall (a host C function may call back) */
   int warn_on, warn_cont;    /* lua_setwarnf state (lauxlib's warnf on/off) */
@@ -187,19 +187,35 @@ void bsfit_engine_interrupt(bsfit_engine *e) {
 ** docall: the one way into Lua (lua.c's docall + msghandler)
 ** ===================================================================== */
 
+/* Stopping: the budget ran out or the host interrupted. Handlers must then run no
+** script code: Lua calls a message handler again, with hooks off, for an error
+** raised by a hook, and nothing could stop a loop there. */
+static int stopping(const bsfit_engine *e) {
+  return e->tripped || e->interrupted;
+}
+
 static int msghandler(lua_State *L) {
   const char *msg = lua_tostring(L, 1);
   if (msg == NULL) {
-    if (luaL_callmeta(L, 1, "__tostring") && lua_type(L, -1) == LUA_TSTRING) return 1;
+    if (!stopping(engine_of(L)) && luaL_callmeta(L, 1, "__tostring") &&
+        lua_type(L, -1) == LUA_TSTRING)
+      return 1;
     msg = lua_pushfstring(L, "(error object is a %s value)", luaL_typename(L, 1));
   }
   luaL_traceback(L, L, msg, 1);
   return 1;
 }
 
+/* The one mapping of a Lua status (of a load or a call) to a bsfit_err, for every
+** engine entry. A stop (budget, interrupt) or a refused allocation wins over the
+** status Lua reports, because a script may have caught the first error and
+** raised another, or Lua may report the failure as an error in error handling. */
 static bsfit_err status_code(const bsfit_engine *e, int status) {
+  if (status == LUA_OK) return BSFIT_OK;
   if (e->tripped || e->interrupted) return BSFIT_EINTR;
   if (e->mem_refused || status == LUA_ERRMEM) return BSFIT_ENOMEM;
+  if (status == LUA_ERRSYNTAX) return BSFIT_EFORMAT;
+  if (status == LUA_ERRFILE) return BSFIT_EIO;
   return BSFIT_EINVAL;
 }
 
@@ -215,13 +231,13 @@ static bsfit_err docall(bsfit_engine *e, int nargs, int nresults) {
   lua_State *L = e->L;
   int base = lua_gettop(L) - nargs;
   int status;
-  bsfit_err code = BSFIT_OK;
+  bsfit_err code;
   if (e->depth++ == 0) begin_call(e);
   lua_pushcfunction(L, msghandler);
   lua_insert(L, base);
   status = lua_pcall(L, nargs, nresults, base);
   lua_remove(L, base);
-  if (status != LUA_OK) code = status_code(e, status);
+  code = status_code(e, status);
   if (--e->depth == 0) lua_sethook(L, NULL, 0, 0);
   if (status != LUA_OK)
     take_error(e);
@@ -240,15 +256,8 @@ bsfit_err bsfit_engine_pcall(bsfit_engine *e, int nargs, int nresults) {
 
 /* Converts a load status (luaL_load*: the message is on the stack) and pops it. */
 static bsfit_err load_code(bsfit_engine *e, int status) {
-  bsfit_err code;
-  switch (status) {
-    case LUA_OK: return BSFIT_OK;
-    case LUA_ERRSYNTAX: code = BSFIT_EFORMAT; break;
-    case LUA_ERRFILE: code = BSFIT_EIO; break;
-    case LUA_ERRMEM: code = BSFIT_ENOMEM; break;
-    default: code = e->mem_refused ? BSFIT_ENOMEM : BSFIT_EINVAL; break;
-  }
-  take_error(e);
+  bsfit_err code = status_code(e, status);
+  if (code != BSFIT_OK) take_error(e);
   return code;
 }
 
@@ -404,56 +413,68 @@ static int sandbox_searcher(lua_State *L) {
   return 1;
 }
 
-/* Whether a bsfit function name reaches the file system: read, write, read_*, write_*. */
-static int is_file_function(const char *k) {
-  return strcmp(k, "read") == 0 || strcmp(k, "write") == 0 || strncmp(k, "read_", 5) == 0 ||
-         strncmp(k, "write_", 6) == 0;
-}
-
-/* Removes the file functions from the table at index t. */
-static void strip_file_functions(lua_State *L, int t) {
-  t = lua_absindex(L, t);
-  lua_pushnil(L);
-  while (lua_next(L, t) != 0) {
-    lua_pop(L, 1);
-    if (lua_type(L, -1) == LUA_TSTRING && is_file_function(lua_tostring(L, -1))) {
-      lua_pushvalue(L, -1);
-      lua_pushnil(L);
-      lua_rawset(L, t); /* clearing a field during lua_next is allowed */
-    }
-  }
-}
-
-/* The sandbox's loader of `require "bsfit"`: the module without what reaches
-** the file system (constructors like bs.points.read, methods like P:write) or
-** escapes the limits (bs.parallel.map runs unlimited worker states). The
-** registry flag "bsfit.sandbox" lets the binding refuse more by itself. */
-static int sandbox_open_bsfit(lua_State *L) {
-  lua_pushboolean(L, 1);
-  lua_setfield(L, LUA_REGISTRYINDEX, "bsfit.sandbox");
-  lua_pushcfunction(L, luaopen_bsfit);
-  lua_pushvalue(L, 1);
+/* The message handler a sandboxed xpcall gives Lua: the script's handler (upvalue
+** 1), unless the call is stopping. Lua runs a message handler with hooks off when
+** the error came from a hook (the budget's or the interrupt's stop), so a looping
+** handler could not be stopped there; and a handler that runs when the stop
+** comes is stopped in turn, whose error calls this again, now stopping. */
+static int sandbox_msgh(lua_State *L) {
+  lua_settop(L, 1);
+  if (stopping(engine_of(L))) return 1; /* the stop's message, unchanged */
+  lua_pushvalue(L, lua_upvalueindex(1));
+  lua_insert(L, 1);
   lua_call(L, 1, 1);
-  if (!lua_istable(L, -1)) return 1;
-  lua_pushnil(L);
-  while (lua_next(L, -2) != 0) { /* constructors: bs.<type>.read ... */
-    if (lua_istable(L, -1)) strip_file_functions(L, -1);
-    lua_pop(L, 1);
-  }
-  if (lua_getfield(L, -1, "parallel") == LUA_TTABLE) {
-    lua_pushnil(L);
-    lua_setfield(L, -2, "map");
-  }
-  lua_pop(L, 1);
-  lua_pushnil(L);
-  while (lua_next(L, LUA_REGISTRYINDEX) != 0) { /* methods: the bsfit.* metatables */
-    int top = lua_gettop(L);
-    if (lua_type(L, -2) == LUA_TSTRING && strncmp(lua_tostring(L, -2), "bsfit.", 6) == 0 &&
-        lua_istable(L, -1) && lua_getfield(L, -1, "__index") == LUA_TTABLE)
-      strip_file_functions(L, -1);
-    lua_settop(L, top - 1); /* keep the key for lua_next */
-  }
   return 1;
+}
+
+static int sandbox_xpcall_k(lua_State *L, int status, lua_KContext ctx) {
+  (void)status;
+  (void)ctx;
+  return lua_gettop(L);
+}
+
+/* xpcall(f, msgh, ...) with msgh wrapped by sandbox_msgh; f may yield, as in Lua's. */
+static int sandbox_xpcall(lua_State *L) {
+  int n = lua_gettop(L);
+  luaL_checktype(L, 2, LUA_TFUNCTION);
+  lua_pushvalue(L, 2);
+  lua_pushcclosure(L, sandbox_msgh, 1);
+  lua_replace(L, 2);
+  lua_pushvalue(L, lua_upvalueindex(1)); /* the real xpcall */
+  lua_insert(L, 1);
+  lua_callk(L, n, LUA_MULTRET, 0, sandbox_xpcall_k);
+  return sandbox_xpcall_k(L, LUA_OK, 0);
+}
+
+/* Wraps global `name` in a C closure of f with the original as upvalue 1. */
+static void wrap_global(lua_State *L, const char *name, lua_CFunction f) {
+  lua_getglobal(L, name);
+  lua_pushcclosure(L, f, 1);
+  lua_setglobal(L, name);
+}
+
+/* package keeps only what require needs: loaded, preload, and searchers of our
+** own (preload, then .lua files of dir). Gone: loadlib and the C searchers (C
+** code), searchpath (it tells whether any file exists and is readable), cpath and
+** path (a script cannot point require elsewhere: dir is the searcher's upvalue). */
+static void sandbox_package(lua_State *L, const char *dir) {
+  static const char *const drop[] = {"loadlib", "searchpath", "cpath", "path", "config"};
+  size_t i;
+  lua_getglobal(L, LUA_LOADLIBNAME);
+  for (i = 0; i < sizeof drop / sizeof drop[0]; i++) {
+    lua_pushnil(L);
+    lua_setfield(L, -2, drop[i]);
+  }
+  lua_createtable(L, 2, 0);
+  lua_getfield(L, -2, "searchers");
+  lua_rawgeti(L, -1, 1); /* the preload searcher */
+  lua_rawseti(L, -3, 1);
+  lua_pop(L, 1);
+  lua_pushstring(L, dir);
+  lua_pushcclosure(L, sandbox_searcher, 1);
+  lua_rawseti(L, -2, 2);
+  lua_setfield(L, -2, "searchers");
+  lua_pop(L, 1);
 }
 
 static void open_sandbox(lua_State *L, const char *dir) {
@@ -471,31 +492,10 @@ static void open_sandbox(lua_State *L, const char *dir) {
   lua_setglobal(L, "dofile");
   lua_pushnil(L);
   lua_setglobal(L, "loadfile");
-  lua_getglobal(L, "load");
-  lua_pushcclosure(L, sandbox_load, 1);
-  lua_setglobal(L, "load");
-  lua_getglobal(L, "setmetatable");
-  lua_pushcclosure(L, sandbox_setmetatable, 1);
-  lua_setglobal(L, "setmetatable");
-  /* package stays only so require works: no loadlib, no C searchers, no path
-  ** a script could point elsewhere (the searcher keeps dir in an upvalue). */
-  lua_getglobal(L, LUA_LOADLIBNAME);
-  lua_pushnil(L);
-  lua_setfield(L, -2, "loadlib");
-  lua_pushliteral(L, "");
-  lua_setfield(L, -2, "cpath");
-  lua_pushfstring(L, "%s/?.lua;%s/?/init.lua", dir, dir);
-  lua_setfield(L, -2, "path");
-  lua_createtable(L, 2, 0);
-  lua_getfield(L, -2, "searchers");
-  lua_rawgeti(L, -1, 1); /* the preload searcher */
-  lua_rawseti(L, -3, 1);
-  lua_pop(L, 1);
-  lua_pushstring(L, dir);
-  lua_pushcclosure(L, sandbox_searcher, 1);
-  lua_rawseti(L, -2, 2);
-  lua_setfield(L, -2, "searchers");
-  lua_pop(L, 1);
+  wrap_global(L, "load", sandbox_load);
+  wrap_global(L, "setmetatable", sandbox_setmetatable);
+  wrap_global(L, "xpcall", sandbox_xpcall);
+  sandbox_package(L, dir);
 }
 
 static void open_full(lua_State *L, const char *dir) {
@@ -508,16 +508,32 @@ static void open_full(lua_State *L, const char *dir) {
   lua_pop(L, 2);
 }
 
-/* Runs protected: any memory error while opening makes bsfit_engine_new fail. */
+/* The engine's loader of `require "bsfit"`: the binding's module plus bs.parallel,
+** which lives here with the host (the binding does not know about it). */
+static int engine_open_bsfit(lua_State *L) {
+  luaopen_bsfit(L);
+  luaL_requiref(L, "bsfit.parallel", luaopen_bsfit_parallel, 0);
+  lua_setfield(L, -2, "parallel");
+  return 1;
+}
+
+/* Runs protected: any memory error while opening makes bsfit_engine_new fail. The
+** registry fields come first: the binding reads them whenever it runs. */
 static int engine_init(lua_State *L) {
   bsfit_engine *e = engine_of(L);
+  lua_pushboolean(L, e->sandbox);
+  lua_setfield(L, LUA_REGISTRYINDEX, BSFIT_LUA_SANDBOX);
+  lua_pushlightuserdata(L, (void *)(uintptr_t)&e->interrupted); /* read as volatile */
+  lua_setfield(L, LUA_REGISTRYINDEX, BSFIT_LUA_INTERRUPT);
   if (e->sandbox)
     open_sandbox(L, e->luadir);
   else
     open_full(L, e->luadir);
   luaL_getsubtable(L, LUA_REGISTRYINDEX, LUA_PRELOAD_TABLE); /* the linit.c recipe */
-  lua_pushcfunction(L, e->sandbox ? sandbox_open_bsfit : luaopen_bsfit);
+  lua_pushcfunction(L, engine_open_bsfit);
   lua_setfield(L, -2, "bsfit");
+  lua_pushcfunction(L, luaopen_bsfit_parallel);
+  lua_setfield(L, -2, "bsfit.parallel");
   lua_pop(L, 1);
   return 0;
 }
@@ -652,8 +668,7 @@ typedef struct fit_args {
 
 /* Raises the load error on the stack, remembering its precise code. */
 static int raise_load(lua_State *L, fit_args *fa, int status) {
-  fa->code = status == LUA_ERRFILE ? BSFIT_EIO : status == LUA_ERRSYNTAX ? BSFIT_EFORMAT
-                                                                          : BSFIT_ENOMEM;
+  fa->code = status_code(engine_of(L), status);
   return lua_error(L);
 }
 
@@ -697,9 +712,9 @@ static void push_opts(lua_State *L, fit_args *fa) {
       luaL_error(L, "options must be a Lua table constructor, got a %s", luaL_typename(L, -1));
     }
   }
-  if (fa->w != NULL) {
+  if (fa->w != NULL) { /* as a file's w column: it multiplies the strategy's rule */
     memcpy(bsfit_lua_pushvector(L, fa->m), fa->w, fa->m * sizeof(double));
-    lua_setfield(L, -2, "weights");
+    lua_setfield(L, -2, "point_weights");
   }
 }
 
@@ -738,6 +753,18 @@ static void collect(lua_State *L, fit_args *fa, int curve, int report) {
   fa->code = bsfit_curve_copy(c, fa->out, &libc, &fa->st);
 }
 
+/* The bsfit_err named by a fail triple's third value ("ESINGULAR"); EINVAL when it
+** names none. */
+static bsfit_err code_of_name(const char *name) {
+  int c;
+  if (name != NULL)
+    for (c = -1; c >= -99; c--)
+      if (strcmp(bsfit_errname((bsfit_err)c), name) == 0) return (bsfit_err)c;
+  return BSFIT_EINVAL;
+}
+
+/* Returns nil, or the strategy's message when it answered `nil, msg, code` (then
+** fa->code holds the code): a strategy's outcome reaches the host as itself. */
 static int pfit(lua_State *L) {
   fit_args *fa = (fit_args *)lua_touserdata(L, 1);
   size_t nbytes = fa->m * (size_t)fa->dim * sizeof(double);
@@ -745,9 +772,33 @@ static int pfit(lua_State *L) {
   push_run(L, fa);
   memcpy(bsfit_lua_pushpoints(L, fa->m, (size_t)fa->dim), fa->pts, nbytes);
   push_opts(L, fa);
-  lua_call(L, 2, 2);
+  lua_call(L, 2, 3);
+  if (!lua_toboolean(L, 1)) {
+    fa->code = code_of_name(lua_tostring(L, 3));
+    if (lua_type(L, 2) == LUA_TSTRING || lua_type(L, 2) == LUA_TNUMBER)
+      lua_pushfstring(L, "%s: %s", fa->strategy, lua_tostring(L, 2));
+    else
+      lua_pushfstring(L, "%s: run returned no curve", fa->strategy);
+    return 1;
+  }
   collect(L, fa, 1, 2);
-  return 0;
+  lua_pushnil(L);
+  return 1;
+}
+
+/* The host's arrays, checked before any Lua runs: the message names the C element. */
+static bsfit_err check_fit_data(bsfit_engine *e, const double *pts, size_t m, int dim,
+                                const double *w) {
+  size_t i;
+  for (i = 0; i < m * (size_t)dim; i++)
+    if (!isfinite(pts[i]))
+      return fail(e, BSFIT_ENONFINITE, "bsfit_engine_fit: pts[%zu] = %g (point %zu) is not finite",
+                  i, pts[i], i / (size_t)dim);
+  for (i = 0; w != NULL && i < m; i++)
+    if (!(w[i] > 0.0 && isfinite(w[i])))
+      return fail(e, BSFIT_EWEIGHT, "bsfit_engine_fit: w[%zu] = %g (weights must be positive and "
+                  "finite)", i, w[i]);
+  return BSFIT_OK;
 }
 
 bsfit_err bsfit_engine_fit(bsfit_engine *e, const char *strategy, const double *pts, size_t m,
@@ -765,6 +816,8 @@ bsfit_err bsfit_engine_fit(bsfit_engine *e, const char *strategy, const double *
     return fail(e, BSFIT_EDIM, "bsfit_engine_fit: dim = %d, must be 2 or 3", dim);
   if (m > SIZE_MAX / (3 * sizeof(double)))
     return fail(e, BSFIT_EINVAL, "bsfit_engine_fit: m = %zu is too large", m);
+  code = check_fit_data(e, pts, m, dim, w);
+  if (code != BSFIT_OK) return code;
   memset(&fa, 0, sizeof fa);
   fa.strategy = strategy;
   fa.pts = pts;
@@ -777,11 +830,16 @@ bsfit_err bsfit_engine_fit(bsfit_engine *e, const char *strategy, const double *
   fa.code = BSFIT_OK;
   lua_pushcfunction(e->L, pfit);
   lua_pushlightuserdata(e->L, &fa);
-  code = docall(e, 1, 0);
-  if (code == BSFIT_OK && fa.code != BSFIT_OK)
+  code = docall(e, 1, 1);
+  if (code != BSFIT_OK) return code == BSFIT_EINVAL && fa.code != BSFIT_OK ? fa.code : code;
+  if (lua_isstring(e->L, -1)) { /* the strategy's own failure: its message and code */
+    take_error(e);
+    return fa.code;
+  }
+  lua_pop(e->L, 1);
+  if (fa.code != BSFIT_OK)
     return fail(e, fa.code, "bsfit_engine_fit: copying the curve: %s", fa.st.msg);
-  if (code == BSFIT_EINVAL && fa.code != BSFIT_OK) code = fa.code;
-  return code;
+  return BSFIT_OK;
 }
 
 /* }==================================================================== */

@@ -8,6 +8,7 @@
 
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 /* {====================================================================
@@ -31,13 +32,44 @@ static int is_outcome(bsfit_err e) {
   }
 }
 
-static const char *message_of(bsfit_err e, const bsfit_status *st) {
-  if (st != NULL && st->code == e && st->msg[0] != '\0') return st->msg;
-  return bsfit_strerror(e);
+/* The core's messages name C functions where a Lua user has another name. */
+static const char *const lua_names[][2] = {
+  {"bsfit_filter_box_curve_delta", "bs.filter.box(C, {delta = d})"},
+  {"bsfit_filter_box_surface_delta", "bs.filter.box(S, {delta_u = du, delta_v = dv})"},
+};
+
+/* Pushes the message of a core status as a Lua user reads it: Lua names for C ones,
+** and knot spans counted from 1 as K:span counts them (the core's EEMPTYSPAN
+** messages count from 0: "knot span 3 [0.2, 0.4) holds no data"). Other indices are
+** checked by the binding before the core sees the data (bsfit__lua_checkfinite, ...). */
+static const char *push_message(lua_State *L, bsfit_err e, const bsfit_status *st) {
+  const char *msg = st != NULL && st->code == e && st->msg[0] != '\0' ? st->msg
+                                                                       : bsfit_strerror(e);
+  const char *at;
+  char *end;
+  unsigned long long i;
+  size_t k;
+  lua_pushstring(L, msg);
+  for (k = 0; k < sizeof lua_names / sizeof lua_names[0]; k++)
+    if (strstr(lua_tostring(L, -1), lua_names[k][0]) != NULL) {
+      luaL_gsub(L, lua_tostring(L, -1), lua_names[k][0], lua_names[k][1]);
+      lua_remove(L, -2);
+    }
+  msg = lua_tostring(L, -1);
+  at = e == BSFIT_EEMPTYSPAN ? strstr(msg, "knot span ") : NULL;
+  if (at == NULL) return msg;
+  at += strlen("knot span ");
+  i = strtoull(at, &end, 10);
+  if (end == at) return msg;
+  lua_pushlstring(L, msg, (size_t)(at - msg));
+  lua_pushfstring(L, "%I%s", (lua_Integer)(i + 1), end);
+  lua_concat(L, 2);
+  lua_remove(L, -2);
+  return lua_tostring(L, -1);
 }
 
 int bsfit__lua_raise(lua_State *L, bsfit_err e, const bsfit_status *st, int arg) {
-  const char *msg = message_of(e, st);
+  const char *msg = push_message(L, e, st);
   if (arg > 0) return luaL_argerror(L, arg, msg);
   return luaL_error(L, "%s", msg);
 }
@@ -46,15 +78,19 @@ int bsfit__lua_result(lua_State *L, bsfit_err e, const bsfit_status *st, int nre
   if (e == BSFIT_OK) return nret;
   if (!is_outcome(e)) return bsfit__lua_raise(L, e, st, arg);
   luaL_pushfail(L);
-  lua_pushstring(L, message_of(e, st));
+  push_message(L, e, st);
   lua_pushstring(L, bsfit_errname(e));
   return 3;
 }
 
+/* The host's interrupt flag travels with the allocator, so every core loop that
+** can run long on an object made here (a fitter's assembly, ...) sees it. */
 bsfit_allocator bsfit__lua_allocator(lua_State *L) {
   bsfit_allocator a;
   a.fn = (bsfit_alloc_fn)lua_getallocf(L, &a.ud);
-  a.interrupt = NULL;
+  lua_getfield(L, LUA_REGISTRYINDEX, BSFIT_LUA_INTERRUPT);
+  a.interrupt = (const volatile int *)lua_touserdata(L, -1); /* NULL when absent */
+  lua_pop(L, 1);
   return a;
 }
 
@@ -81,9 +117,53 @@ bsfit_scratch_ud *bsfit__lua_newscratch(lua_State *L) {
   if (luaL_newmetatable(L, BSFIT_SCRATCH_T)) {
     lua_pushcfunction(L, scratch_gc);
     lua_setfield(L, -2, "__gc");
+    bsfit__lua_protect_metatable(L, -1);
   }
   lua_setmetatable(L, -2);
   return s;
+}
+
+/* }==================================================================== */
+
+/* {====================================================================
+** The sandbox and protected metatables
+** ===================================================================== */
+
+BSFIT_API int bsfit_lua_sandboxed(lua_State *L) {
+  int on;
+  lua_getfield(L, LUA_REGISTRYINDEX, BSFIT_LUA_SANDBOX);
+  on = lua_toboolean(L, -1);
+  lua_pop(L, 1);
+  return on;
+}
+
+void bsfit__lua_check_files(lua_State *L, const char *what) {
+  if (bsfit_lua_sandboxed(L))
+    luaL_error(L, "%s: file access is not allowed in the sandbox", what);
+}
+
+/* getmetatable(obj) answers a fresh table holding only __name: scripts still read
+** the type name, but writing to it (a looping __gc, a changed method) changes
+** nothing that the binding uses. Finalizers run with hooks off, so a writable
+** __gc would be a way around the engine's limits. */
+void bsfit__lua_protect_metatable(lua_State *L, int mt) {
+  mt = lua_absindex(L, mt);
+  lua_createtable(L, 0, 1);
+  lua_getfield(L, mt, "__name");
+  lua_setfield(L, -2, "__name");
+  lua_setfield(L, mt, "__metatable");
+}
+
+void bsfit__lua_protect_metatables(lua_State *L) {
+  lua_pushnil(L);
+  while (lua_next(L, LUA_REGISTRYINDEX) != 0) {
+    if (lua_type(L, -2) == LUA_TSTRING && strncmp(lua_tostring(L, -2), "bsfit.", 6) == 0 &&
+        lua_istable(L, -1)) {
+      if (lua_getfield(L, -1, "__metatable") == LUA_TNIL) bsfit__lua_protect_metatable(L, -2);
+      lua_pop(L, 1);
+    }
+    lua_pop(L, 1); /* the value; the key stays for lua_next */
+  }
 }
 
 /* }==================================================================== */
@@ -204,6 +284,36 @@ void bsfit__lua_checkfinite(lua_State *L, int arg, const bsfit_points_ud *P) {
     if (!isfinite(P->xy[i]))
       luaL_argerror(L, arg, lua_pushfstring(L, "point %I has a non-finite coordinate",
                                             (lua_Integer)(i / P->dim) + 1));
+}
+
+void bsfit__lua_checkknotvalues(lua_State *L, int arg, const double *U, size_t n, int p) {
+  size_t i, run = 1;
+  for (i = 0; i < n; i++)
+    if (!isfinite(U[i]))
+      luaL_argerror(L, arg, lua_pushfstring(L, "knot %I is not finite", (lua_Integer)i + 1));
+  for (i = 1; i < n; i++) {
+    if (U[i] < U[i - 1])
+      luaL_argerror(L, arg, lua_pushfstring(L, "knots decrease at knot %I (%s < %s)",
+                                            (lua_Integer)i + 1, number_text(L, U[i]),
+                                            number_text(L, U[i - 1])));
+    run = U[i] == U[i - 1] ? run + 1 : 1;
+    if (p >= 0 && run == (size_t)p + 2)
+      luaL_argerror(L, arg, lua_pushfstring(L, "knots %I..%I equal %s: multiplicity above "
+                                            "degree+1 = %d", (lua_Integer)(i + 2 - run),
+                                            (lua_Integer)i + 1, number_text(L, U[i]), p + 1));
+  }
+}
+
+void bsfit__lua_checkparams(lua_State *L, int arg, const double *u, size_t n) {
+  size_t i;
+  for (i = 0; i < n; i++)
+    if (!isfinite(u[i]))
+      luaL_argerror(L, arg, lua_pushfstring(L, "parameter %I is not finite", (lua_Integer)i + 1));
+  for (i = 1; i < n; i++)
+    if (u[i] < u[i - 1])
+      luaL_argerror(L, arg, lua_pushfstring(L, "parameters decrease at parameter %I (%s < %s)",
+                                            (lua_Integer)i + 1, number_text(L, u[i]),
+                                            number_text(L, u[i - 1])));
 }
 
 void bsfit__lua_checkweights(lua_State *L, int arg, const double *w, size_t n) {

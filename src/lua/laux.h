@@ -67,7 +67,8 @@ int bsfit__lua_result(lua_State *L, bsfit_err e, const bsfit_status *st, int nre
 /* Raises like bsfit__lua_result, whatever the code (for misuse-only call sites). */
 int bsfit__lua_raise(lua_State *L, bsfit_err e, const bsfit_status *st, int arg);
 
-/* The allocator the core must use for memory that userdata own. */
+/* The allocator the core must use for memory that userdata own; it carries the
+** host's interrupt flag (registry field BSFIT_LUA_INTERRUPT, NULL when absent). */
 bsfit_allocator bsfit__lua_allocator(lua_State *L);
 
 /* Scratch box (STYLE R4): a userdata that owns up to two core-allocated blocks until
@@ -83,6 +84,16 @@ typedef struct bsfit_scratch_ud {
 bsfit_scratch_ud *bsfit__lua_newscratch(lua_State *L);
 /* Frees what the box holds now (it stays a valid, empty box). */
 void bsfit__lua_scratch_free(bsfit_scratch_ud *s);
+
+/* Raises "<what>: file access is not allowed in the sandbox" when L is sandboxed
+** (bsfit_lua_sandboxed). Every binding function that opens a file calls it first. */
+void bsfit__lua_check_files(lua_State *L, const char *what);
+
+/* Gives the metatable at index mt a __metatable field (a table holding only its
+** __name), so scripts can read the type name but not change the metatable. */
+void bsfit__lua_protect_metatable(lua_State *L, int mt);
+/* Protects every "bsfit.*" metatable of the registry that is not yet protected. */
+void bsfit__lua_protect_metatables(lua_State *L);
 
 /* }==================================================================== */
 
@@ -137,6 +148,12 @@ size_t bsfit__lua_checkcount(lua_State *L, int arg, lua_Integer lo, lua_Integer 
 **   `weight 2 is -1 (must be positive and finite)` */
 void bsfit__lua_checkfinite(lua_State *L, int arg, const bsfit_points_ud *P);
 void bsfit__lua_checkweights(lua_State *L, int arg, const double *w, size_t n);
+/* n knot values: finite, non-decreasing and, when p >= 0, no value more than p + 1
+** times (`knot 3 is not finite`, `knots decrease at knot 5 (0.5 < 1)`,
+** `knots 1..3 equal 0: multiplicity above degree+1 = 2`). */
+void bsfit__lua_checkknotvalues(lua_State *L, int arg, const double *U, size_t n, int p);
+/* n parameters: finite and non-decreasing (`parameter 2 is not finite`). */
+void bsfit__lua_checkparams(lua_State *L, int arg, const double *u, size_t n);
 
 /* }==================================================================== */
 

@@ -3,10 +3,10 @@
 ** luaopen_bsfit: builds every userdata metatable, then returns the module table
 ** of constructors and kernels (bs.points, bs.vector, bs.knots, bs.curve, bs.bezier,
 ** bs.surface, bs.bezier_surface, bs.params, bs.geom, bs.weights, bs.fitter,
-** bs.filter, bs.svg, bs.parallel). Sets no globals (STYLE R5, R9).
+** bs.filter, bs.svg; the engine adds bs.parallel, src/host/lparallel.c). Sets no
+** globals (STYLE R5, R9).
 */
 #include "laux.h"
-#include "lparallel.h"
 
 /* {====================================================================
 ** Module table
@@ -56,7 +56,7 @@ BSFIT_API int luaopen_bsfit(lua_State *L) {
     lua_setfield(L, -2, s->name);
   }
   for (f = setters; *f != NULL; f++) (*f)(L);
-  bsfit_lua_open_parallel(L);
+  bsfit__lua_protect_metatables(L); /* after every luaL_newmetatable above */
   lua_pushliteral(L, BSFIT_VERSION);
   lua_setfield(L, -2, "version");
   lua_pushliteral(L, "bsfit " BSFIT_VERSION);

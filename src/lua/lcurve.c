@@ -116,6 +116,7 @@ static int curve_new(lua_State *L) {
     return luaL_argerror(L, 1, lua_pushfstring(L, "%d weights for %d control points", (int)w->n, (int)P->n));
   bsfit__lua_checkfinite(L, 1, P); /* 1-based messages before the core's 0-based ones */
   if (w) bsfit__lua_checkweights(L, 1, w->x, w->n);
+  if (U) bsfit__lua_checkknotvalues(L, 1, U->x, U->n, periodic ? -1 : p);
   if (P->n < (size_t)p + 1)
     return luaL_argerror(L, 1, lua_pushfstring(L, "degree %d needs at least %d control points, got %d",
                                                 p, p + 1, (int)P->n));
@@ -457,9 +458,12 @@ static int curve_from_json(lua_State *L) {
 static int curve_read(lua_State *L) {
   const char *path = luaL_checkstring(L, 1);
   bsfit_allocator a;
-  bsfit_curve_ud *ud = bsfit__lua_newcurve(L, &a);
+  bsfit_curve_ud *ud;
   bsfit_status st;
-  bsfit_err e = bsfit_curve_read_json(path, &ud->c, &a, &st);
+  bsfit_err e;
+  bsfit__lua_check_files(L, "bs.curve.read");
+  ud = bsfit__lua_newcurve(L, &a);
+  e = bsfit_curve_read_json(path, &ud->c, &a, &st);
   if (e == BSFIT_ENOMEM) return bsfit__lua_raise(L, e, &st, 1);
   if (e != BSFIT_OK && e != BSFIT_EIO) e = BSFIT_EFORMAT; /* the file's content is at fault */
   st.code = e;
@@ -494,6 +498,7 @@ static int curve_write(lua_State *L) {
   bsfit_status st;
   bsfit_err e;
   if (k < 2 || k > 100000000) return luaL_argerror(L, t, "field 'samples' must be in 2..1e8");
+  bsfit__lua_check_files(L, "write");
   if (ends_with(path, len, ".json")) e = bsfit_curve_write_json(c, path, &st);
   else if (ends_with(path, len, ".iges") || ends_with(path, len, ".igs")) e = bsfit_curve_write_iges(c, path, &st);
   else if (ends_with(path, len, ".svg") && c->dim >= 2) e = bsfit__lua_curve_svg(L, c, path, (size_t)k, &st);

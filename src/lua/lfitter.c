@@ -87,6 +87,7 @@ static void knots_setting(lua_State *L, int t, bsfit_fit_opts *o) {
     }
   } else if (ty == LUA_TTABLE || luaL_testudata(L, -1, BSFIT_VECTOR_T)) {
     bsfit_vector_ud *v = bsfit__lua_tovector(L, -1);
+    bsfit__lua_checkknotvalues(L, t, v->x, v->n, o->periodic ? -1 : o->degree);
     o->knots = v->x;
     o->nknots = v->n;
   } else {

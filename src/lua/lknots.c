@@ -72,6 +72,7 @@ static int knots_new(lua_State *L) {
   if (v->n < 2 * (size_t)p + 2)
     return luaL_argerror(L, 1, lua_pushfstring(L, "degree %d needs at least %d knots, got %d", p,
                                                 2 * p + 2, (int)v->n));
+  bsfit__lua_checkknotvalues(L, 1, v->x, v->n, p); /* 1-based messages before the core's */
   e = bsfit_knots_validate(v->x, v->n, p, v->n - (size_t)p - 1, &st);
   if (e != BSFIT_OK) return bsfit__lua_raise(L, e, &st, 1);
   K = bsfit__lua_newknots(L, v->n, p);
@@ -200,6 +201,7 @@ static int knots_averaging(lua_State *L) {
     return luaL_argerror(L, 1, lua_pushfstring(L, "rule '%s' is for %s curves", rname,
                                                 closed ? "open" : "closed"));
   u = field_vector(L, 1, "params");
+  bsfit__lua_checkparams(L, 1, u->x, u->n);
   nk = bsfit_knots_place_count(rule, p, (size_t)n);
   period = bsfit__lua_newvector(L, nk); /* open rules: the whole vector */
   e = bsfit_knots_place(rule, u->x, u->n, p, (size_t)n, period->x, &st);

@@ -124,13 +124,16 @@ static int points_frombytes(lua_State *L) {
 ** read or parsed is an outcome, not misuse: nil, message, code (io.open's rule). */
 static int points_read(lua_State *L) {
   const char *path = luaL_checkstring(L, 1);
-  bsfit_scratch_ud *box = bsfit__lua_newscratch(L);
+  bsfit_scratch_ud *box;
   bsfit_points_ud *P;
   bsfit_status st;
   double *xy = NULL, *w = NULL;
   size_t m = 0;
   int dim = 0;
-  bsfit_err e = bsfit_points_read(path, &xy, &m, &dim, &w, &box->a, &st);
+  bsfit_err e;
+  bsfit__lua_check_files(L, "bs.points.read");
+  box = bsfit__lua_newscratch(L);
+  e = bsfit_points_read(path, &xy, &m, &dim, &w, &box->a, &st);
   if (e == BSFIT_ENOMEM) return bsfit__lua_raise(L, e, &st, 0);
   if (e != BSFIT_OK) {
     luaL_pushfail(L);
@@ -246,6 +249,7 @@ static int points_write(lua_State *L) {
   bsfit_status st;
   bsfit_err e;
   luaL_argcheck(L, w == NULL || w->n == P->n, 3, "one weight per point expected");
+  bsfit__lua_check_files(L, "write");
   e = bsfit_points_write(path, P->xy, P->n, (int)P->dim, w ? w->x : NULL, &st);
   lua_settop(L, 1);
   if (e == BSFIT_EIO) return bsfit__lua_result(L, e, &st, 1, 0);

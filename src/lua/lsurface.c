@@ -188,6 +188,7 @@ static const double *knots_field(lua_State *L, int t, const char *kn, int p, siz
     v = bsfit__lua_tovector(L, -1);
     nk = v->n;
     U = v->x;
+    bsfit__lua_checkknotvalues(L, t, U, nk, p); /* 1-based messages before the core's */
   }
   if (n < (size_t)p + 1)
     luaL_argerror(L, t, lua_pushfstring(L, "degree %d in %c needs at least %d control points, got %d", p, dir,
@@ -444,6 +445,7 @@ static int surface_write(lua_State *L) {
   const char *path = luaL_checklstring(L, 2, &len);
   bsfit_status st;
   bsfit_err e;
+  bsfit__lua_check_files(L, "write");
   if (ends_with(path, len, ".json")) e = bsfit_surface_write_json(s, path, &st);
   else if (ends_with(path, len, ".iges") || ends_with(path, len, ".igs"))
     e = bsfit_surface_write_iges(s, path, &st);

@@ -218,9 +218,12 @@ static int svg_tostring(lua_State *L) {
 static int svg_write(lua_State *L) {
   const char *path = luaL_checkstring(L, 2);
   size_t len;
-  const char *text = pushtext(L, 1, &len);
+  const char *text;
   bsfit_status st;
-  bsfit_err e = bsfit_write_file_atomic(path, text, len, &st);
+  bsfit_err e;
+  bsfit__lua_check_files(L, "write");
+  text = pushtext(L, 1, &len);
+  e = bsfit_write_file_atomic(path, text, len, &st);
   lua_settop(L, 1);
   return bsfit__lua_result(L, e, &st, 1, 2);
 }

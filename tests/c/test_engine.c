@@ -17,6 +17,7 @@
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <threads.h> /* thrd_sleep: C11, needs no feature macro */
 #include <time.h>
@@ -214,13 +215,20 @@ static void test_sandbox_denies(void **state) {
                           "assert(load('return y', 'c', 't', {y = 8})() == 8)",
                        NULL),
                    BSFIT_OK);
-  /* bsfit without its file functions (constructors and methods) nor parallel.map */
+  /* bsfit's file functions (constructors and methods) and parallel.map refuse, by
+  ** the registry's sandbox flag; the rest of bsfit works */
   assert_int_equal(bsfit_engine_run_string(
                        e, "local bs = require 'bsfit'\n"
-                          "assert(bs.points.read == nil and bs.curve.read == nil)\n"
+                          "local function refused(f, ...)\n"
+                          "  local ok, err = pcall(f, ...)\n"
+                          "  assert(not ok and err:find('not allowed in the sandbox', 1, true), err)\n"
+                          "end\n"
+                          "refused(bs.points.read, '/etc/passwd')\n"
+                          "refused(bs.curve.read, '/etc/passwd')\n"
                           "local P = bs.points.new(3, 2)\n"
-                          "assert(P.write == nil and P.get ~= nil)\n"
-                          "assert(bs.parallel == nil or bs.parallel.map == nil)",
+                          "refused(P.write, P, '/tmp/bsfit_sandbox_should_not_exist.csv')\n"
+                          "refused(bs.parallel.map, 'bsfit', 'x', {})\n"
+                          "assert(P:get(1) and bs.parallel.clock() > 0)",
                        NULL),
                    BSFIT_OK);
   /* what stays: bsfit, string, table, math, utf8, coroutine */
@@ -548,6 +556,23 @@ static void test_fit_errors(void **state) {
   assert_int_equal(bsfit_engine_fit(e, STRATEGY, NULL, NPTS, 2, NULL, NULL, &c, NULL), BSFIT_EINVAL);
   assert_int_equal(bsfit_engine_fit(e, NULL, pts, NPTS, 2, NULL, NULL, &c, NULL), BSFIT_EINVAL);
   assert_int_equal(bsfit_engine_fit(e, STRATEGY, pts, NPTS, 2, NULL, NULL, NULL, NULL), BSFIT_EINVAL);
+  /* bad host data is named by its C element before any Lua runs */
+  {
+    double bad[2 * NPTS], w[NPTS];
+    size_t i;
+    memcpy(bad, pts, sizeof bad);
+    bad[7] = NAN;
+    assert_int_equal(bsfit_engine_fit(e, STRATEGY, bad, NPTS, 2, NULL, NULL, &c, NULL),
+                     BSFIT_ENONFINITE);
+    assert_msg_has(e, "pts[7] = nan (point 3) is not finite");
+    for (i = 0; i < NPTS; i++) w[i] = 1.0;
+    w[4] = -2;
+    assert_int_equal(bsfit_engine_fit(e, STRATEGY, pts, NPTS, 2, w, NULL, &c, NULL), BSFIT_EWEIGHT);
+    assert_msg_has(e, "w[4] = -2");
+    w[4] = INFINITY;
+    assert_int_equal(bsfit_engine_fit(e, STRATEGY, pts, NPTS, 2, w, NULL, &c, NULL), BSFIT_EWEIGHT);
+    assert_null(c.ctrl);
+  }
   /* the strategy raises: its file:line comes back */
   assert_int_equal(bsfit_engine_fit(e, STRATEGY, pts, NPTS, 2, NULL, "{fail = true}", &c, NULL),
                    BSFIT_EINVAL);
@@ -578,11 +603,89 @@ static void test_fit_errors(void **state) {
   assert_int_equal(bsfit_engine_fit(e, "junk", pts, NPTS, 2, NULL, NULL, &c, NULL), BSFIT_EINVAL);
   assert_msg_has(e, "bsfit.Curve expected");
   assert_null(c.ctrl);
+  /* a strategy's `nil, message, code` reaches the host as itself (it came back as
+  ** "bsfit.Curve expected, got nil", EINVAL) */
+  assert_int_equal(bsfit_engine_fit(e, STRATEGY, pts, NPTS, 2, NULL, "{outcome = 'ESINGULAR'}",
+                                    &c, NULL),
+                   BSFIT_ESINGULAR);
+  assert_msg_has(e, "no good fit for these points");
+  assert_true(strstr(bsfit_engine_errmsg(e), "Curve expected") == NULL);
+  assert_int_equal(bsfit_engine_fit(e, STRATEGY, pts, NPTS, 2, NULL, "{outcome = 'EEMPTYSPAN'}",
+                                    &c, NULL),
+                   BSFIT_EEMPTYSPAN);
+  assert_int_equal(bsfit_engine_fit(e, STRATEGY, pts, NPTS, 2, NULL, "{outcome = 'EWHATEVER'}",
+                                    &c, NULL),
+                   BSFIT_EINVAL);
+  assert_msg_has(e, "no good fit for these points");
+  assert_null(c.ctrl);
+  assert_int_equal(lua_gettop(bsfit_engine_lua(e)), 0);
   /* and after all that, a good fit */
   assert_int_equal(bsfit_engine_fit(e, STRATEGY, pts, NPTS, 2, NULL, NULL, &c, NULL), BSFIT_OK);
   assert_interpolates(&c, pts, u);
   assert_int_equal(lua_gettop(bsfit_engine_lua(e)), 0);
   bsfit_curve_free(&c);
+  bsfit_engine_free(e);
+}
+
+/* A noisy closed section of m points with uneven weights (seeded, reproducible). */
+static void weighted_section(double *pts, double *w, size_t m, unsigned seed) {
+  size_t i;
+  srand(seed);
+  for (i = 0; i < m; i++) {
+    double t = 2 * 3.14159265358979323846 * (double)i / (double)m;
+    double r = 1 + 0.3 * cos(3 * t) + 0.01 * ((double)rand() / RAND_MAX - 0.5);
+    pts[2 * i] = 5 * r * cos(t);
+    pts[2 * i + 1] = 3 * r * sin(t);
+    w[i] = 0.2 + 3.0 * (double)rand() / RAND_MAX;
+  }
+}
+
+static double max_ctrl_diff(const bsfit_curve *a, const bsfit_curve *b) {
+  double d = 0;
+  size_t i;
+  if (a->n != b->n || a->dim != b->dim) return INFINITY;
+  for (i = 0; i < a->n * (size_t)a->dim; i++) d = fmax(d, fabs(a->ctrl[i] - b->ctrl[i]));
+  return d;
+}
+
+/* Host weights mean what a file's w column means to `bsfit reconstruct`: both
+** multiply the strategy's weighting rule, so the engine and the command line fit
+** the same curve to the same data (the engine's weights used to replace the rule). */
+static void test_fit_weights_as_cli(void **state) {
+  static const char *const strategies[] = {"auto", "periodic", "carvalho"};
+  enum { M = 90 };
+  double pts[2 * M], w[M];
+  char csv[512], dir[512], cmd[2048], json[600];
+  size_t s;
+  bsfit_engine *e = new_engine(0, 0, 0);
+  (void)state;
+  for (s = 0; s < sizeof strategies / sizeof strategies[0]; s++) {
+    bsfit_curve ce, cc, cu;
+    char mod[64];
+    weighted_section(pts, w, M, 7u + (unsigned)s);
+    snprintf(csv, sizeof csv, "%s/engine_weights_%s.csv", BSFIT_BINARY_DIR, strategies[s]);
+    snprintf(dir, sizeof dir, "%s/engine_weights_out", BSFIT_BINARY_DIR);
+    assert_int_equal(bsfit_points_write(csv, pts, M, 2, w, NULL), BSFIT_OK);
+    snprintf(cmd, sizeof cmd, "'%s/bsfit' reconstruct '%s' -o '%s' --format json --strategy %s"
+             " >/dev/null 2>&1", BSFIT_BINARY_DIR, csv, dir, strategies[s]);
+    assert_int_equal(system(cmd), 0);
+    snprintf(json, sizeof json, "%s/engine_weights_%s.json", dir, strategies[s]);
+    bsfit_curve_init(&ce);
+    bsfit_curve_init(&cc);
+    bsfit_curve_init(&cu);
+    assert_int_equal(bsfit_curve_read_json(json, &cc, NULL, NULL), BSFIT_OK);
+    snprintf(mod, sizeof mod, "bsfit.strategy.%s", strategies[s]);
+    assert_int_equal(bsfit_engine_fit(e, mod, pts, M, 2, w, "{degree = 3}", &ce, NULL), BSFIT_OK);
+    /* the JSON keeps 17 significant digits: the same computation agrees to rounding */
+    assert_true(max_ctrl_diff(&ce, &cc) < 1e-9);
+    /* and the weights matter: without them the curve is another one */
+    assert_int_equal(bsfit_engine_fit(e, mod, pts, M, 2, NULL, "{degree = 3}", &cu, NULL),
+                     BSFIT_OK);
+    assert_true(max_ctrl_diff(&ce, &cu) > 1e-6);
+    bsfit_curve_free(&ce);
+    bsfit_curve_free(&cc);
+    bsfit_curve_free(&cu);
+  }
   bsfit_engine_free(e);
 }
 
@@ -606,6 +709,7 @@ int main(void) {
     cmocka_unit_test(test_fit_round_trip),
     cmocka_unit_test(test_fit_weights_and_opts),
     cmocka_unit_test(test_fit_errors),
+    cmocka_unit_test(test_fit_weights_as_cli),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

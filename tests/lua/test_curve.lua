@@ -159,7 +159,7 @@ T.test("misuse raises with the argument named", function()
            function() bs.curve.new{degree = 3, control_points = cp} end)
   T.raises("bad argument #1 to 'new' (degree 2 with 3 control points needs 6 knots, got 5)",
            function() bs.curve.new{degree = 2, control_points = cp, knots = {0, 0, 0, 1, 1}} end)
-  T.raises("bad argument #1 to 'new' (knots decrease at index 3 (0.5 < 1))",
+  T.raises("bad argument #1 to 'new' (knots decrease at knot 4 (0.5 < 1))",
            function() bs.curve.new{degree = 2, control_points = cp, knots = {0, 0, 1, 0.5, 1, 1}} end)
   T.raises("bad argument #1 to 'new' (2 weights for 3 control points)",
            function() bs.curve.new{degree = 2, control_points = cp, weights = {1, 1}} end)

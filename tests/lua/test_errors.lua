@@ -54,9 +54,9 @@ T.test("NaN and non-monotone knots are misuse", function()
   local C = bs.bezier.new{control_points = {{0, 0}, {1, 1}}}
   T.raises("bad argument #1 to 'eval' (parameter is not finite)", function() C:eval(0 / 0) end)
   T.raises("bad argument #1 to 'eval' (parameter is not finite)", function() C:eval(math.huge) end)
-  T.raises("bad argument #1 to 'new' (knots decrease at index 2 (0 < 1))",
+  T.raises("bad argument #1 to 'new' (knots decrease at knot 3 (0 < 1))",
            function() bs.knots.new{degree = 0, values = {0, 1, 0}} end)
-  T.raises("bad argument #1 to 'new' (knots decrease at index 2 (0 < 1))",
+  T.raises("bad argument #1 to 'new' (knots decrease at knot 3 (0 < 1))",
            function() bs.curve.new{degree = 0, knots = {0, 1, 0}, control_points = {{0, 0}, {1, 1}}} end)
 end)
 
@@ -68,6 +68,9 @@ T.test("numerical outcomes return the fail triple", function()
   local F = bs.fitter{degree = 1, knots = {0, 0, 0.5, 1, 1}}
   local C, m2, c2 = F:fit({{0, 0}, {0.1, 0}, {0.2, 0}}, {0, 0.1, 0.2})
   T.ok(not C); T.ok(m2:find("span"), m2); T.eq(c2, "EEMPTYSPAN")
+  -- the empty span is named as K:span numbers it, from 1 (the core counts from 0)
+  local K = bs.knots.new{degree = 1, values = {0, 0, 0.5, 1, 1}}
+  T.ok(m2:find("knot span " .. K:span(0.7) .. " [0.5, 1)", 1, true), m2)
   -- files
   T.fails("EIO", bs.points.read, "/nonexistent/dir/x.csv")
   T.fails("EFORMAT", bs.curve.from_json, "[1, 2")

@@ -45,11 +45,11 @@ T.test("span: K[i] <= t < K[i+1], ends folded into the domain's spans", function
 end)
 
 T.test("values are validated: monotone, finite, multiplicity, size", function()
-  T.raises("bad argument #1 to 'new' (knots decrease at index 4 (0.5 < 1))",
+  T.raises("bad argument #1 to 'new' (knots decrease at knot 5 (0.5 < 1))",
            function() bs.knots.new{degree = 1, values = {0, 0, 1, 1, 0.5, 2}} end)
-  T.raises("bad argument #1 to 'new' (knot 2 is not finite)",
+  T.raises("bad argument #1 to 'new' (knot 3 is not finite)",
            function() bs.knots.new{degree = 1, values = {0, 0, 0 / 0, 1}} end)
-  T.raises("bad argument #1 to 'new' (knot 0 has multiplicity above degree+1 = 2)",
+  T.raises("bad argument #1 to 'new' (knots 1..3 equal 0: multiplicity above degree+1 = 2)",
            function() bs.knots.new{degree = 1, values = {0, 0, 0, 1, 1}} end)
   T.raises("bad argument #1 to 'new' (degree 3 needs at least 8 knots, got 5)",
            function() bs.knots.new{degree = 3, values = {0, 0, 0, 1, 1}} end)

@@ -212,8 +212,16 @@ local function load_strategy(s)
     if not chunk then error("strategy " .. err, 0) end
     mod = chunk()
   else
-    local ok, m = pcall(require, "bsfit.strategy." .. s)
-    if not ok then error(("unknown strategy '%s' (auto, carvalho, periodic or FILE.lua)"):format(s), 0) end
+    -- "unknown" only when the module itself is not found; any other error while
+    -- loading it (a syntax error, a missing module it requires) is reported as itself
+    local name = "bsfit.strategy." .. s
+    local ok, m = pcall(require, name)
+    if not ok then
+      if tostring(m):find("module '" .. name .. "' not found", 1, true) then
+        error(("unknown strategy '%s' (auto, carvalho, periodic or FILE.lua)"):format(s), 0)
+      end
+      error(("strategy '%s' failed to load: %s"):format(s, tostring(m)), 0)
+    end
     mod = m
   end
   if type(mod) ~= "table" or type(mod.run) ~= "function" then

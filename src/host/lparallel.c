@@ -1,25 +1,28 @@
 /*
 ** lparallel.c
 ** bs.parallel: run a Lua function over many string items on worker threads, one
-** bsfit engine per worker (src/host/parallel.c), plus a monotonic clock.
+** bsfit engine per worker (parallel.c), plus a monotonic clock. It lives with the
+** host because its workers are engines: the binding (src/lua) knows nothing of
+** it. The engine preloads it as `bsfit.parallel` and sets it as bs.parallel;
+** under stock lua5.4, require "bsfit.parallel" finds it in bsfit.so.
 **
 **   local results, errors = bs.parallel.map(module, fn, items [, nthreads])
 **
 ** calls require(module)[fn](item) for every string of the array `items` in a
 ** fresh Lua state per worker and returns the results (strings) in item order;
 ** results[i] is false when item i failed, and errors[i] then holds the message.
-** Workers see the caller's package.path/cpath; when the caller has no io
-** library (a sandboxed engine) the workers are sandboxed too. Memory and
-** instruction limits of the calling engine do not apply to the workers.
+** Workers see the caller's package.path/cpath. A sandboxed caller
+** (bsfit_lua_sandboxed) may not call it: its workers would run outside the
+** caller's instruction budget, memory cap and interrupt.
 **
 **   bs.parallel.clock() --> seconds (monotonic wall clock, for timing)
 **   bs.parallel.cpus()  --> number of online processors
 */
 #define _POSIX_C_SOURCE 200809L
 
-#include "lparallel.h"
-
-#include "../host/parallel.h"
+#include "bsfit_engine.h"
+#include "bsfit_lua.h"
+#include "parallel.h"
 
 #include <lauxlib.h>
 #include <lua.h>
@@ -70,23 +73,15 @@ static const char *package_field(lua_State *L, const char *k) {
   return s;
 }
 
-/* True when the calling state has no io library: treat it as sandboxed. */
-static int caller_sandboxed(lua_State *L) {
-  int sandboxed = 1;
-  if (lua_getglobal(L, "package") == LUA_TTABLE && lua_getfield(L, -1, "loaded") == LUA_TTABLE)
-    sandboxed = lua_getfield(L, -1, "io") != LUA_TTABLE;
-  lua_settop(L, 4);
-  return sandboxed;
-}
-
 static int parallel_map(lua_State *L) {
   const char *module = luaL_checkstring(L, 1);
   const char *fn = luaL_checkstring(L, 2);
   lua_Integer nt = luaL_optinteger(L, 4, 1), len;
   const char *path, *cpath;
-  int sandboxed;
   size_t n, i;
   bsfit_pmap *job;
+  if (bsfit_lua_sandboxed(L))
+    return luaL_error(L, "bs.parallel.map is not allowed in the sandbox");
   luaL_checktype(L, 3, LUA_TTABLE);
   luaL_argcheck(L, nt >= 1 && nt <= 256, 4, "number of threads must be in 1..256");
   len = luaL_len(L, 3);
@@ -100,13 +95,12 @@ static int parallel_map(lua_State *L) {
                                                  luaL_typename(L, -1)));
     lua_pop(L, 1);
   }
-  sandboxed = caller_sandboxed(L);
   path = package_field(L, "path");
   cpath = package_field(L, "cpath");
   job = newjob(L, n); /* slot 5: from here the outputs are owned by its __gc */
   job->module = module;
   job->fn = fn;
-  job->sandbox = sandboxed;
+  job->sandbox = 0;
   job->path = path;
   job->cpath = cpath;
   for (i = 0; i < n; i++) { /* the strings stay anchored in the items table */
@@ -156,12 +150,15 @@ static const luaL_Reg job_metameth[] = {{"__gc", job_gc}, {"__close", job_gc}, {
 static const luaL_Reg parallel_funcs[] = {
   {"map", parallel_map}, {"clock", parallel_clock}, {"cpus", parallel_cpus}, {NULL, NULL}};
 
-int bsfit_lua_open_parallel(lua_State *L) {
-  if (luaL_newmetatable(L, BSFIT_PJOB_T)) luaL_setfuncs(L, job_metameth, 0);
+BSFIT_API int luaopen_bsfit_parallel(lua_State *L) {
+  if (luaL_newmetatable(L, BSFIT_PJOB_T)) {
+    luaL_setfuncs(L, job_metameth, 0);
+    lua_pushliteral(L, BSFIT_PJOB_T); /* protected, like the binding's metatables */
+    lua_setfield(L, -2, "__metatable");
+  }
   lua_pop(L, 1);
   luaL_newlib(L, parallel_funcs);
-  lua_setfield(L, -2, "parallel");
-  return 0;
+  return 1;
 }
 
 /* }==================================================================== */
