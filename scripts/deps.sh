@@ -6,7 +6,8 @@ set -euo pipefail
 
 pkgs=(build-essential cmake pkg-config lua5.4 liblua5.4-dev liblapacke-dev libopenblas-dev)
 if [ "${1:-}" = "--test" ]; then
-  pkgs+=(libcmocka-dev python3-scipy)
+  pkgs+=(libcmocka-dev python3-scipy g++ libocct-data-exchange-dev libocct-foundation-dev
+         libocct-modeling-data-dev python3-ezdxf)
 fi
 
 missing=()

@@ -11,11 +11,16 @@
 /** A tensor-product surface S(u,v) = sum_i sum_j V_ij B_i(u) B_j(v) (rational when
 ** `weights` is not NULL). Control net row-major over (i, j): point (i, j) starts at
 ** ctrl[(i * nv + j) * dim]; weights[i * nv + j]. Knots: nu+pu+1 in u, nv+pv+1 in v.
-** `bezier` surfaces have nu = pu+1, nv = pv+1 and clamped [0,1] knots. */
+** `bezier` surfaces have nu = pu+1, nv = pv+1 and clamped [0,1] knots.
+** `periodic_u` surfaces are closed around u (a skinned surface, bsfit_surface_skin) and
+** stored in the expanded periodic form of curves: nu = N+pu rows of control points whose
+** last pu rows repeat the first pu, and knots_u whose spans repeat with the period; u is
+** wrapped into the period [knots_u[pu], knots_u[nu]) by the evaluators. */
 typedef struct bsfit_surface {
   int degree_u, degree_v;
   int dim;               /**< 1..4 (3 for ordinary surfaces) */
   int bezier;
+  int periodic_u;         /**< expanded periodic form in u (checked by validate) */
   size_t nu, nv;         /**< control points in u and v */
   double *knots_u;       /**< nu + degree_u + 1 */
   double *knots_v;       /**< nv + degree_v + 1 */

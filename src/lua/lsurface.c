@@ -436,7 +436,7 @@ static int ends_with(const char *s, size_t len, const char *ext) {
   return len > n && strcmp(s + len - n, ext) == 0;
 }
 
-/* S:write(path): ".json" or ".iges" by extension, replaced atomically; returns S, or
+/* S:write(path): ".json", ".iges" or ".step" by extension, replaced atomically; returns S, or
 ** nil, message, code when the file cannot be written */
 static int surface_write(lua_State *L) {
   bsfit_surface *s = checksurface(L, 1);
@@ -447,7 +447,11 @@ static int surface_write(lua_State *L) {
   if (ends_with(path, len, ".json")) e = bsfit_surface_write_json(s, path, &st);
   else if (ends_with(path, len, ".iges") || ends_with(path, len, ".igs"))
     e = bsfit_surface_write_iges(s, path, &st);
-  else return luaL_argerror(L, 2, "file name must end in .json, .iges or .igs");
+  else if (ends_with(path, len, ".step") || ends_with(path, len, ".stp")) {
+    if (s->dim < 2 || s->dim > 3 || s->degree_u < 1 || s->degree_v < 1)
+      return luaL_argerror(L, 2, "STEP holds 2D and 3D surfaces of degrees >= 1");
+    e = bsfit_surface_write_step(s, path, &st);
+  } else return luaL_argerror(L, 2, "file name must end in .json, .iges, .igs, .step or .stp");
   lua_settop(L, 1);
   return bsfit__lua_result(L, e, &st, 1, 2);
 }
