@@ -133,10 +133,8 @@ local function make_surfaces()
     weights = net(6, 5, 1, function() return rnd(0.5, 2) end) })
 end
 
--- a surface closed around u: the sections of a vase skinned together (when the library
--- has bs.surface.skin; test_exchange.sh requires it)
+-- a surface closed around u (periodic_u, expanded form): the sections of a vase skinned
 local function make_skinned()
-  if not (bs.surface and bs.surface.skin) then return end
   local sections = {}
   for k = 1, 5 do
     local z, r = 10 * (k - 1), 8 + 3 * math.sin(k)
