@@ -319,4 +319,29 @@ BSFIT_API bsfit_err bsfit_curves_write_dxf(const bsfit_curve *const *c, size_t n
 
 /* }==================================================================== */
 
+/* {====================================================================
+** OBJ mesh of a surface (a preview for mesh viewers)
+** ===================================================================== */
+
+/** Formats a triangle mesh sampled from a valid 2D or 3D surface as Wavefront OBJ:
+** "v x y z" lines (z = 0 for 2D), then "f a b c" lines (1-based, two triangles per grid
+** cell, counter-clockwise seen along dS/du x dS/dv). The grid is nu x nv samples equally
+** spaced in parameter, ends included; a surface periodic in u gets nu distinct columns
+** over one period and triangles from the last column back to the first (closed, no
+** seam gap, no doubled vertices): nu*nv vertices and 2*nu*(nv-1) triangles, otherwise
+** 2*(nu-1)*(nv-1).
+** @param[out] out *len+1 bytes allocated with a (the caller frees them with it).
+** @return BSFIT_OK, BSFIT_EINVAL (nu or nv outside 2..100000, out NULL), BSFIT_EDIM, a
+**         code of bsfit_surface_validate, BSFIT_ENOMEM. */
+BSFIT_API bsfit_err bsfit_surface_to_obj(const bsfit_surface *s, size_t nu, size_t nv, char **out,
+                                         size_t *len, const bsfit_allocator *a,
+                                         bsfit_status *st);
+
+/** Writes bsfit_surface_to_obj's text to path atomically.
+** @return those codes and bsfit_write_file_atomic's. */
+BSFIT_API bsfit_err bsfit_surface_write_obj(const bsfit_surface *s, size_t nu, size_t nv,
+                                            const char *path, bsfit_status *st);
+
+/* }==================================================================== */
+
 #endif /* BSFIT_IO_H */

@@ -17,11 +17,14 @@
 ** The clamped form of a curve
 ** ===================================================================== */
 
-/* The clamped form of an open curve: knot refinement to multiplicity p at both ends of
-** the domain [a, b], then only the control points the domain uses are kept. With s the last
+/* The clamped form of c (memory from al): knot refinement to multiplicity p at both ends
+** of the domain [a, b], then only the control points the domain uses are kept. A periodic
+** curve's expanded form is, on its domain, an open unclamped B-spline: it is clamped the
+** same way (cutting it open at a, where the period starts). With s the last
 ** knot equal to a and f the first equal to b, the spans of [a, b] are s..f-1, so control
 ** points s-p..f-1 remain, with knots [a]*(p+1), R[s+1..f-1], [b]*(p+1). */
-static bsfit_err clamp_open(const bsfit_curve *c, bsfit_curve *out, bsfit_status *st) {
+static bsfit_err clamped(const bsfit_curve *c, bsfit_curve *out, const bsfit_allocator *al,
+                            bsfit_status *st) {
   int p = c->degree, m, t;
   double a, b, X[2 * BSFIT_MAX_DEGREE];
   size_t nx = 0, s, f, n, d = (size_t)c->dim, i, nk = c->n + (size_t)p + 1;
@@ -31,12 +34,17 @@ static bsfit_err clamp_open(const bsfit_curve *c, bsfit_curve *out, bsfit_status
   for (m = bsfit_knots_multiplicity(c->knots, nk, a), t = m; t < p; t++) X[nx++] = a;
   for (m = bsfit_knots_multiplicity(c->knots, nk, b), t = m; t < p; t++) X[nx++] = b;
   bsfit_curve_init(&r);
-  e = bsfit_curve_refine(c, X, nx, &r, st);
-  if (e != BSFIT_OK) return e;
+  e = bsfit_curve_copy(c, &r, al, st); /* r's operations allocate with al */
+  r.periodic = 0;
+  if (e == BSFIT_OK) e = bsfit_curve_refine(&r, X, nx, &r, st);
+  if (e != BSFIT_OK) {
+    bsfit_curve_free(&r);
+    return e;
+  }
   for (s = (size_t)p; r.knots[s + 1] == a; s++) continue;
   for (f = r.n; r.knots[f - 1] == b; f--) continue;
   n = f - (s - (size_t)p);
-  e = bsfit_curve_alloc(out, p, c->dim, n, c->weights != NULL, &c->alloc, st);
+  e = bsfit_curve_alloc(out, p, c->dim, n, c->weights != NULL, al, st);
   if (e == BSFIT_OK) {
     for (i = 0; i <= (size_t)p; i++) {
       out->knots[i] = a;
@@ -49,14 +57,6 @@ static bsfit_err clamp_open(const bsfit_curve *c, bsfit_curve *out, bsfit_status
   }
   bsfit_curve_free(&r);
   return e;
-}
-
-/* A clamped copy of c in out (the same points at the same parameters on [a, b]). */
-static bsfit_err clamped(const bsfit_curve *c, bsfit_curve *out, bsfit_status *st) {
-  double a, b;
-  bsfit_curve_domain(c, &a, &b);
-  if (c->periodic) return bsfit_curve_split(c, a, out, NULL, st); /* cut open at a */
-  return clamp_open(c, out, st);
 }
 
 /* }==================================================================== */
@@ -286,8 +286,9 @@ bsfit_err bsfit_curves_to_dxf(const bsfit_curve *const *c, size_t n, char **out,
   for (k = 0; k < n; k++) {
     bsfit_curve cl;
     bsfit_curve_init(&cl);
-    e = clamped(c[k], &cl, st);
+    e = clamped(c[k], &cl, a, st);
     if (e != BSFIT_OK) {
+      bsfit_curve_free(&cl);
       bsfit__buf_free(&b);
       return e;
     }
