@@ -3,63 +3,14 @@
 ** DXF (AutoCAD R2000, AC1015) export of curves as SPLINE entities: the HEADER, TABLES,
 ** BLOCKS, ENTITIES and OBJECTS sections with the handles and owners an R2000 reader
 ** checks (ezdxf's auditor passes the files without fixes).
-** Every curve is written clamped: DXF readers differ on unclamped knot vectors (ezdxf
-** evaluates from the first knot, AutoCAD's periodic splines have their own convention),
-** and knot insertion gives the same curve, with the same parametrisation, in clamped form.
+** Every curve is written clamped (io_clamp.c): DXF readers differ on unclamped knot
+** vectors, and knot insertion gives the same curve, with the same parametrisation.
 */
 #include "io_internal.h"
 
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
-
-/* {====================================================================
-** The clamped form of a curve
-** ===================================================================== */
-
-/* The clamped form of c (memory from al): knot refinement to multiplicity p at both ends
-** of the domain [a, b], then only the control points the domain uses are kept. A periodic
-** curve's expanded form is, on its domain, an open unclamped B-spline: it is clamped the
-** same way (cutting it open at a, where the period starts). With s the last
-** knot equal to a and f the first equal to b, the spans of [a, b] are s..f-1, so control
-** points s-p..f-1 remain, with knots [a]*(p+1), R[s+1..f-1], [b]*(p+1). */
-static bsfit_err clamped(const bsfit_curve *c, bsfit_curve *out, const bsfit_allocator *al,
-                            bsfit_status *st) {
-  int p = c->degree, m, t;
-  double a, b, X[2 * BSFIT_MAX_DEGREE];
-  size_t nx = 0, s, f, n, d = (size_t)c->dim, i, nk = c->n + (size_t)p + 1;
-  bsfit_curve r;
-  bsfit_err e;
-  bsfit_curve_domain(c, &a, &b);
-  for (m = bsfit_knots_multiplicity(c->knots, nk, a), t = m; t < p; t++) X[nx++] = a;
-  for (m = bsfit_knots_multiplicity(c->knots, nk, b), t = m; t < p; t++) X[nx++] = b;
-  bsfit_curve_init(&r);
-  e = bsfit_curve_copy(c, &r, al, st); /* r's operations allocate with al */
-  r.periodic = 0;
-  if (e == BSFIT_OK) e = bsfit_curve_refine(&r, X, nx, &r, st);
-  if (e != BSFIT_OK) {
-    bsfit_curve_free(&r);
-    return e;
-  }
-  for (s = (size_t)p; r.knots[s + 1] == a; s++) continue;
-  for (f = r.n; r.knots[f - 1] == b; f--) continue;
-  n = f - (s - (size_t)p);
-  e = bsfit_curve_alloc(out, p, c->dim, n, c->weights != NULL, al, st);
-  if (e == BSFIT_OK) {
-    for (i = 0; i <= (size_t)p; i++) {
-      out->knots[i] = a;
-      out->knots[n + i] = b;
-    }
-    for (i = s + 1; i < f; i++) out->knots[(size_t)p + 1 + i - (s + 1)] = r.knots[i];
-    memcpy(out->ctrl, r.ctrl + (s - (size_t)p) * d, n * d * sizeof(double));
-    if (r.weights) memcpy(out->weights, r.weights + (s - (size_t)p), n * sizeof(double));
-    e = bsfit_curve_validate(out, st);
-  }
-  bsfit_curve_free(&r);
-  return e;
-}
-
-/* }==================================================================== */
 
 /* {====================================================================
 ** Sections
@@ -286,7 +237,7 @@ bsfit_err bsfit_curves_to_dxf(const bsfit_curve *const *c, size_t n, char **out,
   for (k = 0; k < n; k++) {
     bsfit_curve cl;
     bsfit_curve_init(&cl);
-    e = clamped(c[k], &cl, a, st);
+    e = bsfit__curve_clamped(c[k], &cl, a, st);
     if (e != BSFIT_OK) {
       bsfit_curve_free(&cl);
       bsfit__buf_free(&b);

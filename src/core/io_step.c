@@ -223,13 +223,12 @@ static bsfit_err check_curve(const bsfit_curve *c, size_t k, bsfit_status *st) {
   return BSFIT_OK;
 }
 
-/* One curve (its points, then the curve); returns the curve's number. A periodic curve
-** is written in its expanded (unclamped) form with closed_curve .T.: the same knots,
-** control points and parametrisation, on the domain [U[p], U[n]]. */
-static long curve(step *s, const bsfit_curve *c, size_t k) {
+/* One clamped curve (its points, then the curve); returns the curve's number. closed:
+** the original was periodic (closed_curve .T.). */
+static long curve(step *s, const bsfit_curve *c, size_t k, int periodic) {
   size_t i, nk = c->n + (size_t)c->degree + 1;
   long first = s->next, id;
-  const char *closed = c->periodic ? ".T." : ".F.";
+  const char *closed = periodic ? ".T." : ".F.";
   for (i = 0; i < c->n; i++) point(s, c->ctrl + i * (size_t)c->dim, c->dim);
   id = s->next++;
   if (c->weights == NULL) {
@@ -270,7 +269,20 @@ bsfit_err bsfit_curves_to_step(const bsfit_curve *const *c, size_t n, const char
   s.next = 1;
   header(&s, name ? name : "bsfit.step", "bsfit: B-spline curves");
   ctx = context(&s);
-  for (k = 0; k < n; k++) ids[k] = curve(&s, c[k], k);
+  for (k = 0; k < n && e == BSFIT_OK; k++) {
+    /* clamped (io_clamp.c): OCCT misreads closed unclamped curves with a knot of
+    ** multiplicity p at the seam, and no reader is unsure about clamped ones */
+    bsfit_curve cl;
+    bsfit_curve_init(&cl);
+    e = bsfit__curve_clamped(c[k], &cl, a, st);
+    if (e == BSFIT_OK) ids[k] = curve(&s, &cl, k, c[k]->periodic);
+    bsfit_curve_free(&cl);
+  }
+  if (e != BSFIT_OK) {
+    bsfit__free(a, ids, n * sizeof *ids);
+    bsfit__buf_free(&s.b);
+    return e;
+  }
   set = s.next++;
   bsfit__buf_printf(&s.b, "#%ld=GEOMETRIC_CURVE_SET('curves',(", set);
   for (k = 0; k < n; k++) bsfit__buf_printf(&s.b, k ? ",#%ld" : "#%ld", ids[k]);
@@ -312,11 +324,11 @@ static void surface_knots(step *s, const bsfit_surface *S) {
   put_distinct(&s->b, S->knots_v, nkv);
 }
 
-/* One surface; returns its number. */
-static long surface(step *s, const bsfit_surface *S) {
+/* One clamped surface; returns its number. uclosed: the original was periodic in u. */
+static long surface(step *s, const bsfit_surface *S, int periodic_u) {
   size_t i, np = S->nu * S->nv;
   long first = s->next, id;
-  const char *uclosed = S->periodic_u ? ".T." : ".F.";
+  const char *uclosed = periodic_u ? ".T." : ".F.";
   for (i = 0; i < np; i++) point(s, S->ctrl + i * (size_t)S->dim, S->dim);
   id = s->next++;
   if (S->weights == NULL) {
@@ -347,6 +359,7 @@ bsfit_err bsfit_surface_to_step(const bsfit_surface *S, const char *name, char *
                                 size_t *len, const bsfit_allocator *a, bsfit_status *st) {
   step s;
   long ctx, id, set, rep;
+  bsfit_surface cl;
   bsfit_err e;
   if (S == NULL) return bsfit__fail(st, BSFIT_EINVAL, "no surface to write");
   if (out == NULL) return bsfit__fail(st, BSFIT_EINVAL, "no output for the STEP text");
@@ -360,7 +373,14 @@ bsfit_err bsfit_surface_to_step(const bsfit_surface *S, const char *name, char *
   s.next = 1;
   header(&s, name ? name : "bsfit.step", "bsfit: B-spline surface");
   ctx = context(&s);
-  id = surface(&s, S);
+  bsfit_surface_init(&cl);
+  e = bsfit__surface_clamped(S, &cl, a, st);
+  if (e != BSFIT_OK) {
+    bsfit__buf_free(&s.b);
+    return e;
+  }
+  id = surface(&s, &cl, S->periodic_u);
+  bsfit_surface_free(&cl);
   set = entity(&s, "GEOMETRIC_SET('surface',(#%ld));", id);
   rep = entity(&s, "GEOMETRICALLY_BOUNDED_SURFACE_SHAPE_REPRESENTATION('bsfit',(#%ld),#%ld);",
                set, ctx);

@@ -79,6 +79,15 @@ local function make_curves()
       add(("periodic_rational_p%d_%dd"):format(p, dim), bs.curve.new {
         degree = p, periodic = true, knots = increasing(N + 1, a, b),
         control_points = points(N, dim, scale, ox), weights = weights(N) })
+      -- corners: a knot of multiplicity p at the seam and one inside (C0 there), as
+      -- the automatic strategy makes them
+      local M = 2 * p + 2 + math.random(0, 4)
+      local t = increasing(M + 1, a, b)
+      for i = 2, p do t[i] = t[1] end
+      for i = p + 3, 2 * p + 1 do t[i] = t[p + 2] end
+      add(("periodic_corners_p%d_%dd"):format(p, dim), bs.curve.new {
+        degree = p, periodic = true, knots = t, control_points = points(M, dim, scale, ox),
+        weights = (p % 2 == 0) and weights(M) or nil })
     end
   end
   local h = math.sqrt(0.5)
@@ -146,6 +155,18 @@ local function make_skinned()
     sections[k] = bs.curve.new { degree = 3, periodic = true, control_points = P }
   end
   add_surface("skinned_vase", (bs.surface.skin(sections)))
+  -- sections with a corner (knot of multiplicity 3) at their start: so is the surface's seam
+  for k = 1, 4 do
+    local P = {}
+    for i = 1, 8 do
+      local a = 2 * math.pi * (i - 1) / 8
+      P[i] = { (6 + k) * math.cos(a), (4 + k) * math.sin(a), 7 * k }
+    end
+    sections[k] = bs.curve.new { degree = 3, periodic = true, control_points = P,
+      knots = { 0, 0, 0, 0.2, 0.3, 0.5, 0.6, 0.8, 1 } }
+  end
+  for k = 5, #sections do sections[k] = nil end
+  add_surface("skinned_corners", (bs.surface.skin(sections)))
 end
 
 local function gen(dir)

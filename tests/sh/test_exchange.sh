@@ -60,6 +60,24 @@ compare all "ezdxf reads every curve of all.dxf" "$TMP/all.dxf.out"
 if [ $dxf_rc -eq 0 ]; then ok "ezdxf: every DXF file read, audited without errors or fixes"
 else bad "ezdxf: $(cat "$TMP/dxf.err")"; fi
 
+# bsfit reconstruct --format step,dxf: NAME.step and NAME.dxf per section of the demo set,
+# read back and compared with the section's NAME.json
+REC=$TMP/rec
+if "$BSFIT" reconstruct -q -o "$REC" --format json,step,dxf "$SRC/tests/data/demo" >"$TMP/rec.log" 2>&1; then
+  ok "reconstruct --format json,step,dxf"
+else bad "reconstruct --format json,step,dxf: $(cat "$TMP/rec.log")"; fi
+: >"$REC/cases.txt"
+for f in "$REC"/*.step; do echo "curve $(basename "$f" .step)" >>"$REC/cases.txt"; done
+[ -s "$REC/cases.txt" ] || bad "reconstruct wrote no section"
+"$PY" "$SRC/tests/sh/dxf_read.py" 100 "$REC"/*.dxf 2>"$TMP/rec_dxf.err" || bad "ezdxf: $(cat "$TMP/rec_dxf.err")"
+while read -r kind name; do
+  "$OCCT_READ" "$REC/$name.step" 100 10 >"$REC/$name.step.out" 2>/dev/null
+  if "$BSFIT" "$CASES" check "$REC" "$name" "$REC/$name.step.out" "$TOL" >"$TMP/check.log" 2>&1 &&
+     "$BSFIT" "$CASES" check "$REC" "$name" "$REC/$name.dxf.out" "$TOL" >>"$TMP/check.log" 2>&1; then
+    ok "reconstruct's $name.step (OCCT) and $name.dxf (ezdxf) are its curve"
+  else bad "reconstruct's $name.step / $name.dxf"; cat "$TMP/check.log"; fi
+done <"$REC/cases.txt"
+
 # reproducible bytes with SOURCE_DATE_EPOCH
 cp "$TMP/all.step" "$TMP/first.step"
 "$BSFIT" "$CASES" gen "$TMP" >/dev/null 2>&1
