@@ -31,7 +31,8 @@ bsfit_err bsfit_surface_to_obj(const bsfit_surface *s, size_t nu, size_t nv, cha
   d = (size_t)s->dim;
   nbytes = kg * nv * d * sizeof(double);
   grid = bsfit__alloc(a, nbytes);
-  if (grid == NULL) return bsfit__fail(st, BSFIT_ENOMEM, "out of memory for %zu x %zu samples", nu, nv);
+  if (grid == NULL)
+    return bsfit__fail(st, BSFIT_ENOMEM, "out of memory for %zu x %zu samples", nu, nv);
   e = bsfit_surface_sample_grid(s, kg, nv, grid, st);
   if (e != BSFIT_OK) {
     bsfit__free(a, grid, nbytes);

@@ -510,14 +510,17 @@ static int curve_write(lua_State *L) {
   if (k < 2 || k > 100000000) return luaL_argerror(L, t, "field 'samples' must be in 2..1e8");
   if (ends_with(path, len, ".json")) e = bsfit_curve_write_json(c, path, &st);
   else if (ends_with(path, len, ".iges") || ends_with(path, len, ".igs")) e = bsfit_curve_write_iges(c, path, &st);
-  else if (ends_with(path, len, ".step") || ends_with(path, len, ".stp")) e = write_exchange(L, c, path, 0, &st);
+  else if (ends_with(path, len, ".step") || ends_with(path, len, ".stp"))
+    e = write_exchange(L, c, path, 0, &st);
   else if (ends_with(path, len, ".dxf")) e = write_exchange(L, c, path, 1, &st);
   else if (ends_with(path, len, ".svg") && c->dim >= 2) e = bsfit__lua_curve_svg(L, c, path, (size_t)k, &st);
   else if (ends_with(path, len, ".csv") && c->dim >= 2 && c->dim <= 3) e = write_csv(L, c, path, (size_t)k, &st);
   else if (ends_with(path, len, ".svg") || ends_with(path, len, ".csv"))
     return luaL_argerror(L, 2, lua_pushfstring(L, "a curve of dimension %d cannot be written as %s", c->dim,
                                                path + len - 4));
-  else return luaL_argerror(L, 2, "file name must end in .json, .svg, .iges, .igs, .step, .stp, .dxf or .csv");
+  else
+    return luaL_argerror(L, 2, "file name must end in .json, .svg, .iges, .igs, .step, .stp, "
+                               ".dxf or .csv");
   lua_settop(L, 1);
   return bsfit__lua_result(L, e, &st, 1, 2);
 }

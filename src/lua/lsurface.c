@@ -437,7 +437,8 @@ static int ends_with(const char *s, size_t len, const char *ext) {
 }
 
 /* S:write(path [, {samples_u = 100, samples_v = 100}]): ".json", ".iges", ".step" or
-** ".obj" (a triangle mesh of samples_u x samples_v points) by extension, replaced atomically; returns S, or
+** ".obj" (a triangle mesh of samples_u x samples_v points) by extension, replaced
+** atomically; returns S, or
 ** nil, message, code when the file cannot be written */
 static int surface_write(lua_State *L) {
   static const char *const opts[] = {"samples_u", "samples_v", NULL};
@@ -458,9 +459,12 @@ static int surface_write(lua_State *L) {
       return luaL_argerror(L, 2, "STEP holds 2D and 3D surfaces of degrees >= 1");
     e = bsfit_surface_write_step(s, path, &st);
   } else if (ends_with(path, len, ".obj")) {
-    if (s->dim < 2 || s->dim > 3) return luaL_argerror(L, 2, "an OBJ mesh needs a 2D or 3D surface");
+    if (s->dim < 2 || s->dim > 3)
+      return luaL_argerror(L, 2, "an OBJ mesh needs a 2D or 3D surface");
     e = bsfit_surface_write_obj(s, (size_t)ku, (size_t)kv, path, &st);
-  } else return luaL_argerror(L, 2, "file name must end in .json, .iges, .igs, .step, .stp or .obj");
+  } else {
+    return luaL_argerror(L, 2, "file name must end in .json, .iges, .igs, .step, .stp or .obj");
+  }
   lua_settop(L, 1);
   return bsfit__lua_result(L, e, &st, 1, 2);
 }

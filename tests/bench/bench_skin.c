@@ -31,7 +31,8 @@ static int make_sections(bsfit_curve *C, size_t K, size_t N, int own_knots) {
   for (k = 0; k < K; k++) {
     double z = 10.0 * (double)k / (double)K, r = 5 + sin(z);
     for (i = 0; i <= N; i++)
-      t[i] = (double)i + (own_knots && i > 0 && i < N ? 0.4 * (rand() / (double)RAND_MAX - 0.5) : 0);
+      t[i] = (double)i +
+             (own_knots && i > 0 && i < N ? 0.4 * (rand() / (double)RAND_MAX - 0.5) : 0);
     for (i = 0; i < N; i++) {
       double a = 2 * 3.141592653589793 * (double)i / (double)N;
       P[i * 3] = r * cos(a) * (1 + 0.1 * cos(3 * a));

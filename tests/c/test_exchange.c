@@ -130,7 +130,8 @@ static void test_step_exact(void **state) {
     assert_int_equal(strlen(text), len);
     assert_non_null(strstr(text, "ISO-10303-21;"));
     assert_non_null(strstr(text, "END-ISO-10303-21;"));
-    assert_non_null(strstr(text, c.weights ? "RATIONAL_B_SPLINE_CURVE(" : "B_SPLINE_CURVE_WITH_KNOTS('"));
+    assert_non_null(
+        strstr(text, c.weights ? "RATIONAL_B_SPLINE_CURVE(" : "B_SPLINE_CURVE_WITH_KNOTS('"));
     assert_non_null(strstr(text, c.periodic ? ".T.,.F." : ".F.,.F.")); /* closed_curve */
     parse_step_curve(text, &d);
     same_curve(&c, &d);

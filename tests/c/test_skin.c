@@ -14,6 +14,7 @@
 
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "bsfit.h"
@@ -110,7 +111,8 @@ static void test_interpolates_sections(void **state) {
     /* given: K random sections of random degrees and knots, some reversed */
     for (k = 0; k < K; k++) {
       random_section(&r, 2.0 * (double)k, &C[k]);
-      if (k > 0 && rng_uniform(&r) < 0.3) assert_int_equal(bsfit_curve_reverse(&C[k], &C[k], NULL), BSFIT_OK);
+      if (k > 0 && rng_uniform(&r) < 0.3)
+        assert_int_equal(bsfit_curve_reverse(&C[k], &C[k], NULL), BSFIT_OK);
       ptr[k] = &C[k];
     }
     bsfit_skin_opts_init(&o);
@@ -169,6 +171,45 @@ static void test_ruled(void **state) {
     bsfit_curve_free(&C[0]);
     bsfit_curve_free(&C[1]);
   }
+}
+
+/* The periodic_u form survives JSON (flag, knots, evaluation), evaluation wraps u into the
+** period, and a net whose wrapped rows differ is refused when read back. */
+static void test_periodic_u_json(void **state) {
+  test_rng r = {4242};
+  bsfit_curve C[3];
+  const bsfit_curve *ptr[3] = {&C[0], &C[1], &C[2]};
+  bsfit_surface S, R;
+  char *text, *bad;
+  size_t len, k;
+  int i;
+  (void)state;
+  for (k = 0; k < 3; k++) random_section(&r, 3.0 * (double)k, &C[k]);
+  bsfit_surface_init(&S);
+  bsfit_surface_init(&R);
+  assert_int_equal(bsfit_surface_skin(ptr, 3, NULL, &S, NULL, NULL, NULL), BSFIT_OK);
+  assert_int_equal(bsfit_surface_to_json(&S, &text, &len, NULL, NULL), BSFIT_OK);
+  assert_non_null(strstr(text, "\"periodic_u\":true"));
+  assert_int_equal(bsfit_surface_from_json(text, len, &R, NULL, NULL), BSFIT_OK);
+  assert_true(R.periodic_u);
+  assert_memory_equal(R.knots_u, S.knots_u, (S.nu + (size_t)S.degree_u + 1) * sizeof(double));
+  for (i = 0; i < 50; i++) {
+    double u = rng_range(&r, -3, 3), v = rng_uniform(&r), x[3], y[3], z[3];
+    bsfit_surface_eval(&R, u, v, x, NULL);
+    bsfit_surface_eval(&S, u - floor(u), v, y, NULL); /* wrapped by hand */
+    bsfit_surface_eval(&S, u, v, z, NULL);
+    assert_float_equal(x[0], y[0], 1e-12 * (1 + fabs(y[0])));
+    assert_float_equal(x[2], y[2], 1e-12 * (1 + fabs(y[2])));
+    assert_float_equal(z[1], y[1], 1e-12 * (1 + fabs(y[1])));
+  }
+  /* the first control point changed: its wrapped copy no longer repeats it */
+  bad = strstr(text, "\"control_points\":[[[") + strlen("\"control_points\":[[[");
+  bad[0] = bad[0] == '9' ? '8' : '9';
+  assert_int_equal(bsfit_surface_from_json(text, len, &R, NULL, NULL), BSFIT_ENOTPERIODIC);
+  free(text);
+  bsfit_surface_free(&S);
+  bsfit_surface_free(&R);
+  for (k = 0; k < 3; k++) bsfit_curve_free(&C[k]);
 }
 
 /* }==================================================================== */
@@ -416,6 +457,7 @@ int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(test_interpolates_sections),
     cmocka_unit_test(test_ruled),
+    cmocka_unit_test(test_periodic_u_json),
     cmocka_unit_test(test_surface_of_revolution),
     cmocka_unit_test(test_twisted_inputs),
     cmocka_unit_test(test_errors),
