@@ -207,6 +207,8 @@ static void test_periodic_u_json(void **state) {
   bad[0] = bad[0] == '9' ? '8' : '9';
   assert_int_equal(bsfit_surface_from_json(text, len, &R, NULL, NULL), BSFIT_ENOTPERIODIC);
   free(text);
+  /* the box filter would treat the closed surface as open: refused, not wrong */
+  assert_int_equal(bsfit_filter_box_surface_delta(&S, 0.1, 0.1, &R, NULL), BSFIT_EINVAL);
   bsfit_surface_free(&S);
   bsfit_surface_free(&R);
   for (k = 0; k < 3; k++) bsfit_curve_free(&C[k]);
