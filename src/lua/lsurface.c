@@ -363,6 +363,12 @@ static int surface_kind(lua_State *L) {
   return 1;
 }
 
+/* S:is_periodic() --> true when closed around u (a skinned surface: periodic_u) */
+static int surface_is_periodic(lua_State *L) {
+  lua_pushboolean(L, checksurface(L, 1)->periodic_u);
+  return 1;
+}
+
 static int surface_is_rational(lua_State *L) {
   lua_pushboolean(L, checksurface(L, 1)->weights != NULL);
   return 1;
@@ -494,7 +500,8 @@ static const luaL_Reg surface_meth[] = {
   {"eval", surface_eval}, {"deriv", surface_deriv}, {"normal", surface_normal},
   {"sample", surface_sample}, {"domain", surface_domain}, {"degree", surface_degree},
   {"dim", surface_dim}, {"count", surface_count}, {"kind", surface_kind},
-  {"is_rational", surface_is_rational}, {"knots_u", surface_knots_u},
+  {"is_rational", surface_is_rational}, {"is_periodic", surface_is_periodic},
+  {"knots_u", surface_knots_u},
   {"knots_v", surface_knots_v}, {"control_points", surface_control_points},
   {"weights", surface_weights}, {"copy", surface_copy}, {"to_json", surface_to_json},
   {"write", surface_write}, {"close", surface_gc}, {NULL, NULL}};

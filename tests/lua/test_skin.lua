@@ -49,6 +49,7 @@ T.test("skin: the surface passes through every section (seeded random stacks)", 
     T.eq(rep.v_params[K], 1)
     for k = 2, K do T.ok(rep.v_params[k] > rep.v_params[k - 1]) end
     T.ok(section_error(S, rep, sections) < 1e-12 * 20, "sections interpolated")
+    T.eq(S:is_periodic(), true)
     local ua, ub, va, vb = S:domain()
     T.eq(ua, 0); T.eq(ub, 1); T.eq(va, 0); T.eq(vb, 1)
   end
