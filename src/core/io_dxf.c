@@ -21,7 +21,7 @@ enum {
   H_LTYPE_TABLE = 1, H_BYBLOCK, H_BYLAYER, H_CONTINUOUS, H_LAYER_TABLE, H_LAYER0,
   H_STYLE_TABLE, H_STANDARD, H_BR_TABLE, H_BR_MODEL, H_BR_PAPER, H_BLOCK_MODEL, H_ENDBLK_MODEL,
   H_BLOCK_PAPER, H_ENDBLK_PAPER, H_ROOT_DICT, H_GROUP_DICT, H_APPID_TABLE, H_APPID_ACAD,
-  FIRST_SPLINE
+  H_VPORT_TABLE, H_VIEW_TABLE, H_UCS_TABLE, H_DIMSTYLE_TABLE, FIRST_SPLINE
 };
 
 static void code(bsfit__buf *b, int gc, const char *value) {
@@ -77,9 +77,17 @@ static void linetype(bsfit__buf *b, long h, const char *name, const char *what) 
   code_real(b, 40, 0.0);
 }
 
+/* A table with no records (AutoCAD expects all nine tables, in this order). */
+static void empty_table(bsfit__buf *b, const char *name, long h) {
+  table(b, name, h, 0);
+  if (strcmp(name, "DIMSTYLE") == 0) code(b, 100, "AcDbDimStyleTable");
+  code(b, 0, "ENDTAB");
+}
+
 static void tables(bsfit__buf *b) {
   code(b, 0, "SECTION");
   code(b, 2, "TABLES");
+  empty_table(b, "VPORT", H_VPORT_TABLE);
   table(b, "LTYPE", H_LTYPE_TABLE, 3);
   linetype(b, H_BYBLOCK, "ByBlock", "");
   linetype(b, H_BYLAYER, "ByLayer", "");
@@ -100,9 +108,12 @@ static void tables(bsfit__buf *b) {
   code(b, 3, "txt");
   code(b, 4, "");
   code(b, 0, "ENDTAB");
+  empty_table(b, "VIEW", H_VIEW_TABLE);
+  empty_table(b, "UCS", H_UCS_TABLE);
   table(b, "APPID", H_APPID_TABLE, 1);
   record(b, "APPID", H_APPID_ACAD, H_APPID_TABLE, "AcDbRegAppTableRecord", "ACAD");
   code(b, 0, "ENDTAB");
+  empty_table(b, "DIMSTYLE", H_DIMSTYLE_TABLE);
   table(b, "BLOCK_RECORD", H_BR_TABLE, 2);
   record(b, "BLOCK_RECORD", H_BR_MODEL, H_BR_TABLE, "AcDbBlockTableRecord", "*Model_Space");
   record(b, "BLOCK_RECORD", H_BR_PAPER, H_BR_TABLE, "AcDbBlockTableRecord", "*Paper_Space");
