@@ -30,9 +30,9 @@
 ** Checks and normalisation
 ** ===================================================================== */
 
-static bsfit_err bad_section(bsfit_skin_report *rep, size_t k) {
+/* Records the section an error is about ((size_t)-1: none). */
+static void bad_section(bsfit_skin_report *rep, size_t k) {
   if (rep != NULL) rep->bad_section = k;
-  return BSFIT_OK;
 }
 
 static bsfit_err check_sections(const bsfit_curve *const *c, size_t K, int q,
