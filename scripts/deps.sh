@@ -6,8 +6,10 @@ set -euo pipefail
 
 pkgs=(build-essential cmake pkg-config lua5.4 liblua5.4-dev liblapacke-dev libopenblas-dev)
 if [ "${1:-}" = "--test" ]; then
-  # luarocks: the rockspec test; man-db, groff-base: the man page test
-  pkgs+=(libcmocka-dev python3-scipy luarocks man-db groff-base)
+  # luarocks: the rockspec test; man-db, groff-base: the man page test;
+  # g++ and OpenCASCADE, python3-ezdxf: the CAD exchange readers
+  pkgs+=(libcmocka-dev python3-scipy luarocks man-db groff-base g++ libocct-data-exchange-dev
+         libocct-foundation-dev libocct-modeling-data-dev python3-ezdxf)
 fi
 
 missing=()

@@ -94,7 +94,8 @@ BSFIT_API bsfit_err bsfit_points_write(const char *path, const double *xy, size_
 ** Surface: {"type":"bspline_surface"|"nurbs_surface"|"bezier_surface","degree_u":pu,
 **   "degree_v":pv,"dim":d,"knots_u":[...],"knots_v":[...],"control_points":
 **   [[[x,y,z],...nv...],...nu...],"weights":[[...nv...],...nu...] (rational only),
-**   "domain_u":[a,b],"domain_v":[c,d]}.
+**   "domain_u":[a,b],"domain_v":[c,d]}; a surface closed around u (bsfit_surface_skin)
+**   adds "periodic_u":true and is in the expanded periodic form in u.
 ** The reader is strict JSON (RFC 8259): objects, arrays, numbers, strings, true,
 ** false, null; keys it does not know are skipped; nesting deeper than 64 is refused.
 ** "dim", "periodic" and the domains may be left out; when present they must agree.
@@ -246,6 +247,100 @@ BSFIT_API bsfit_err bsfit_surface_to_iges(const bsfit_surface *s, char **out, si
 /** Writes bsfit_surface_to_iges's text to path atomically. */
 BSFIT_API bsfit_err bsfit_surface_write_iges(const bsfit_surface *s, const char *path,
                                              bsfit_status *st);
+
+/* }==================================================================== */
+
+/* {====================================================================
+** STEP export (ISO 10303-21, AP214 "automotive_design")
+** Curves: B_SPLINE_CURVE_WITH_KNOTS (rational: the complex instance with
+** RATIONAL_B_SPLINE_CURVE), all of them in one GEOMETRIC_CURVE_SET of a
+** GEOMETRICALLY_BOUNDED_WIREFRAME_SHAPE_REPRESENTATION; a surface:
+** B_SPLINE_SURFACE_WITH_KNOTS (or RATIONAL_B_SPLINE_SURFACE) in a GEOMETRIC_SET of a
+** GEOMETRICALLY_BOUNDED_SURFACE_SHAPE_REPRESENTATION; both attached to one PRODUCT so
+** CAD readers transfer them. Units: millimetres (coordinates written as they are, %.17G).
+** Knots are written as distinct values and multiplicities. Periodic curves (and surfaces
+** periodic in u) are written in their expanded, unclamped form with closed_curve .T.:
+** the same parametrisation, domain [U[p], U[n]]. 2D curves get z = 0. FILE_NAME's time
+** stamp is the time of writing, or SOURCE_DATE_EPOCH (as the IGES writer) for
+** reproducible bytes. See docs/exchange.md.
+** ===================================================================== */
+
+/** Formats n valid curves (dim 2 or 3, degree >= 1) as one STEP file.
+** @param[in]  c     n pointers to curves.
+** @param[in]  name  the file name recorded in FILE_NAME (NULL: "bsfit.step").
+** @param[out] out   *len+1 bytes allocated with a (the caller frees them with it).
+** @return BSFIT_OK, BSFIT_EINVAL (c NULL, n == 0, a NULL curve, out NULL), BSFIT_EDIM
+**         (dim 1 or 4), BSFIT_EDEGREE (degree 0), a code of bsfit_curve_validate,
+**         BSFIT_ENOMEM. Messages count curves from 0. */
+BSFIT_API bsfit_err bsfit_curves_to_step(const bsfit_curve *const *c, size_t n, const char *name,
+                                         char **out, size_t *len, const bsfit_allocator *a,
+                                         bsfit_status *st);
+
+/** Writes bsfit_curves_to_step's text to path atomically.
+** @return those codes and bsfit_write_file_atomic's. */
+BSFIT_API bsfit_err bsfit_curves_write_step(const bsfit_curve *const *c, size_t n,
+                                            const char *path, bsfit_status *st);
+
+/** As bsfit_curves_to_step, for one surface (dim 2 or 3, degrees >= 1). */
+BSFIT_API bsfit_err bsfit_surface_to_step(const bsfit_surface *s, const char *name, char **out,
+                                          size_t *len, const bsfit_allocator *a,
+                                          bsfit_status *st);
+
+/** Writes bsfit_surface_to_step's text to path atomically. */
+BSFIT_API bsfit_err bsfit_surface_write_step(const bsfit_surface *s, const char *path,
+                                             bsfit_status *st);
+
+/* }==================================================================== */
+
+/* {====================================================================
+** DXF export (AutoCAD R2000, AC1015)
+** One SPLINE entity per curve in model space (layer "0"), with the minimal HEADER,
+** TABLES, BLOCKS and OBJECTS an R2000 reader checks. Group codes: 70 flags (1 closed,
+** 4 rational, 8 planar, 16 linear), 71 degree, 72/73/74 knot / control point / fit point
+** counts, 40 knots, 41 weights, 10/20/30 control points (z = 0 for 2D curves). Every
+** curve is written clamped, with the same parametrisation: open curves with unclamped
+** ends by knot insertion, periodic ones cut open at the start of their period (closed
+** flag set), since readers disagree on unclamped knots. See docs/exchange.md.
+** ===================================================================== */
+
+/** Formats n valid curves (dim 2 or 3, degree >= 1) as one DXF file.
+** @param[out] out *len+1 bytes allocated with a (the caller frees them with it).
+** @return BSFIT_OK, BSFIT_EINVAL (c NULL, n == 0, a NULL curve, out NULL), BSFIT_EDIM,
+**         BSFIT_EDEGREE (degree 0), a code of bsfit_curve_validate, BSFIT_ENOMEM.
+**         Messages count curves from 0. */
+BSFIT_API bsfit_err bsfit_curves_to_dxf(const bsfit_curve *const *c, size_t n, char **out,
+                                        size_t *len, const bsfit_allocator *a,
+                                        bsfit_status *st);
+
+/** Writes bsfit_curves_to_dxf's text to path atomically.
+** @return those codes and bsfit_write_file_atomic's. */
+BSFIT_API bsfit_err bsfit_curves_write_dxf(const bsfit_curve *const *c, size_t n,
+                                           const char *path, bsfit_status *st);
+
+/* }==================================================================== */
+
+/* {====================================================================
+** OBJ mesh of a surface (a preview for mesh viewers)
+** ===================================================================== */
+
+/** Formats a triangle mesh sampled from a valid 2D or 3D surface as Wavefront OBJ:
+** "v x y z" lines (z = 0 for 2D), then "f a b c" lines (1-based, two triangles per grid
+** cell, counter-clockwise seen along dS/du x dS/dv). The grid is nu x nv samples equally
+** spaced in parameter, ends included; a surface periodic in u gets nu distinct columns
+** over one period and triangles from the last column back to the first (closed, no
+** seam gap, no doubled vertices): nu*nv vertices and 2*nu*(nv-1) triangles, otherwise
+** 2*(nu-1)*(nv-1).
+** @param[out] out *len+1 bytes allocated with a (the caller frees them with it).
+** @return BSFIT_OK, BSFIT_EINVAL (nu or nv outside 2..100000, out NULL), BSFIT_EDIM, a
+**         code of bsfit_surface_validate, BSFIT_ENOMEM. */
+BSFIT_API bsfit_err bsfit_surface_to_obj(const bsfit_surface *s, size_t nu, size_t nv, char **out,
+                                         size_t *len, const bsfit_allocator *a,
+                                         bsfit_status *st);
+
+/** Writes bsfit_surface_to_obj's text to path atomically.
+** @return those codes and bsfit_write_file_atomic's. */
+BSFIT_API bsfit_err bsfit_surface_write_obj(const bsfit_surface *s, size_t nu, size_t nv,
+                                            const char *path, bsfit_status *st);
 
 /* }==================================================================== */
 

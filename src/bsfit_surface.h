@@ -11,11 +11,16 @@
 /** A tensor-product surface S(u,v) = sum_i sum_j V_ij B_i(u) B_j(v) (rational when
 ** `weights` is not NULL). Control net row-major over (i, j): point (i, j) starts at
 ** ctrl[(i * nv + j) * dim]; weights[i * nv + j]. Knots: nu+pu+1 in u, nv+pv+1 in v.
-** `bezier` surfaces have nu = pu+1, nv = pv+1 and clamped [0,1] knots. */
+** `bezier` surfaces have nu = pu+1, nv = pv+1 and clamped [0,1] knots.
+** `periodic_u` surfaces are closed around u (a skinned surface, bsfit_surface_skin) and
+** stored in the expanded periodic form of curves: nu = N+pu rows of control points whose
+** last pu rows repeat the first pu, and knots_u whose spans repeat with the period; u is
+** wrapped into the period [knots_u[pu], knots_u[nu]) by the evaluators. */
 typedef struct bsfit_surface {
   int degree_u, degree_v;
   int dim;               /**< 1..4 (3 for ordinary surfaces) */
   int bezier;
+  int periodic_u;         /**< expanded periodic form in u (checked by validate) */
   size_t nu, nv;         /**< control points in u and v */
   double *knots_u;       /**< nu + degree_u + 1 */
   double *knots_v;       /**< nv + degree_v + 1 */
@@ -118,5 +123,56 @@ BSFIT_API bsfit_err bsfit_surface_normal(const bsfit_surface *s, double u, doubl
 ** @return BSFIT_OK, BSFIT_EINVAL (ku or kv below 2, or overflow) or BSFIT_ENOMEM. */
 BSFIT_API bsfit_err bsfit_surface_sample_grid(const bsfit_surface *s, size_t ku, size_t kv,
                                               double *out, bsfit_status *st);
+
+/* {====================================================================
+** Skinning: one surface through closed sections (The NURBS Book 10.3, docs/skinning.md)
+** ===================================================================== */
+
+/** Options of bsfit_surface_skin; set them with bsfit_skin_opts_init first. */
+typedef struct bsfit_skin_opts {
+  int degree_v; /**< degree q across the sections, 1..3 and < K; 0 = min(3, K-1) */
+  int align;    /**< non-zero (default): orient the sections alike and line up their seams */
+} bsfit_skin_opts;
+
+/** What skinning did, in arrays of K entries the caller provides (any may be NULL). */
+typedef struct bsfit_skin_report {
+  double *v_params;   /**< v of each section: S(u, v_params[k]) traces section k */
+  int *reversed;      /**< 1 when section k was reversed to wind like the previous one */
+  double *shifts;     /**< the parameter of section k (in its own domain) at the seam u = 0 */
+  size_t bad_section; /**< set by the call: the section an error is about, or (size_t)-1 */
+} bsfit_skin_report;
+
+/** Sets the defaults: degree_v = 0 (min(3, K-1)), align = 1. */
+BSFIT_API void bsfit_skin_opts_init(bsfit_skin_opts *o);
+
+/** Skins K >= 2 closed sections into one surface, periodic in u (around the sections,
+** periodic_u, domain [0, 1)) and clamped in v (across them, domain [0, 1]).
+** The sections are reparametrised onto [0, 1), oriented alike and their seams lined up
+** (align), elevated to the highest degree p and refined to the union of their knots
+** (exact: the same curves), then each column of control points is interpolated by a
+** clamped B-spline of degree q at the averaged chord-length parameters v_k. So
+** S(u, v_k) is section k for every u: S(u, v_k) = C_k(shift_k + (b_k - a_k) u) for a
+** section kept in its direction, C_k(shift_k - (b_k - a_k) u) for a reversed one
+** (wrapped into its period [a_k, b_k)).
+** The surface has as many u control points as the union of the sections' knots: sections
+** fitted with the same knots give N + p, independently fitted ones up to the sum of theirs.
+** @param[in]  sections  K valid, periodic, polynomial, 3D curves (any degrees >= 1).
+** @param[in]  o         options, or NULL for the defaults.
+** @param[out] out       the surface (freed first; arrays allocated with a). Empty on error.
+** @param[out] rep       optional report (see bsfit_skin_report).
+** @param[in]  a         allocator for the surface and the scratch memory (NULL = realloc);
+**                       its interrupt flag is looked at once per section and per column.
+** @return BSFIT_OK; BSFIT_ETOOFEW (fewer than 2 sections); BSFIT_EDEGREE (degree_v out of
+**         range); BSFIT_EINVAL (a NULL, open or rational section, out NULL); BSFIT_EDIM
+**         (a section not 3D); a code of bsfit_curve_validate (e.g. BSFIT_ENONFINITE);
+**         BSFIT_EDEGENERATE (two consecutive sections coincide, or all); BSFIT_ESINGULAR;
+**         BSFIT_EINTR; BSFIT_ENOMEM. rep->bad_section names the section at fault
+**         (0-based) when there is one. */
+BSFIT_API bsfit_err bsfit_surface_skin(const bsfit_curve *const *sections, size_t K,
+                                       const bsfit_skin_opts *o, bsfit_surface *out,
+                                       bsfit_skin_report *rep, const bsfit_allocator *a,
+                                       bsfit_status *st);
+
+/* }==================================================================== */
 
 #endif /* BSFIT_SURFACE_H */

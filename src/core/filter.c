@@ -308,6 +308,9 @@ static bsfit_err check_surface(const bsfit_surface *s, bsfit_status *st) {
   if (e != BSFIT_OK) return e;
   if (s->weights != NULL)
     return bsfit__fail(st, BSFIT_EINVAL, "rational surfaces cannot be box-filtered");
+  /* filtered as an open surface, the expanded form would no longer close at the seam */
+  if (s->periodic_u)
+    return bsfit__fail(st, BSFIT_EINVAL, "surfaces closed around u cannot be box-filtered");
   if (s->degree_u + 1 > BSFIT_MAX_DEGREE || s->degree_v + 1 > BSFIT_MAX_DEGREE)
     return bsfit__fail(st, BSFIT_EDEGREE, "filtering raises a degree above %d",
                        BSFIT_MAX_DEGREE);

@@ -297,7 +297,11 @@ static bsfit_err surface_iges(const bsfit_surface *s, const char *file, char **o
   pack_int(&k, net_closed(s, 1), ',');     /* PROP1 closed in u */
   pack_int(&k, net_closed(s, 0), ',');     /* PROP2 closed in v */
   pack_int(&k, s->weights == NULL, ',');   /* PROP3 polynomial */
-  pack_int(&k, 0, ',');                    /* PROP4, PROP5: not periodic */
+  /* PROP4, PROP5: not periodic. A surface periodic in u (periodic_u) goes out in its
+  ** expanded form as an ordinary unclamped surface: flagged closed or periodic, it is
+  ** made periodic by OpenCASCADE, wrongly when a knot of multiplicity p sits at the seam
+  ** (tests/sh/test_exchange.sh, skinned_corners) */
+  pack_int(&k, 0, ',');
   pack_int(&k, 0, ',');
   for (i = 0; i < s->nu + (size_t)s->degree_u + 1; i++) pack_real(&k, s->knots_u[i], ',');
   for (i = 0; i < s->nv + (size_t)s->degree_v + 1; i++) pack_real(&k, s->knots_v[i], ',');

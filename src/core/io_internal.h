@@ -43,6 +43,14 @@ bsfit_err bsfit__buf_write(bsfit__buf *b, const char *path, bsfit_status *st);
 ** BSFIT_EIO (message: path and the system's reason) or BSFIT_ENOMEM. */
 bsfit_err bsfit__read_file(const char *path, bsfit__buf *b, bsfit_status *st);
 
+/* The clamped form of a curve / surface (io_clamp.c): the same points at the same
+** parameters on the same domain, with end knots of multiplicity p+1 (a periodic curve is
+** cut open where its period starts; the result is not periodic). Memory from al. */
+bsfit_err bsfit__curve_clamped(const bsfit_curve *c, bsfit_curve *out, const bsfit_allocator *al,
+                               bsfit_status *st);
+bsfit_err bsfit__surface_clamped(const bsfit_surface *s, bsfit_surface *out,
+                                 const bsfit_allocator *al, bsfit_status *st);
+
 /* {======================================================================
 ** A strict JSON reader (io_jsonparse.c), pull style: the caller walks the document
 ** it expects, and every error names the byte offset. Errors are EFORMAT unless said.

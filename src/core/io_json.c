@@ -74,9 +74,11 @@ bsfit_err bsfit_surface_to_json(const bsfit_surface *s, char **out, size_t *len,
   if (e != BSFIT_OK) return e;
   d = (size_t)s->dim;
   bsfit__buf_init(&b, a);
-  bsfit__buf_printf(&b, "{\"type\":\"%s\",\"degree_u\":%d,\"degree_v\":%d,\"dim\":%d,\"knots_u\":",
+  bsfit__buf_printf(&b, "{\"type\":\"%s\",\"degree_u\":%d,\"degree_v\":%d,\"dim\":%d,",
                     s->bezier ? "bezier_surface" : s->weights ? "nurbs_surface" : "bspline_surface",
                     s->degree_u, s->degree_v, s->dim);
+  if (s->periodic_u) bsfit__buf_puts(&b, "\"periodic_u\":true,\"knots_u\":");
+  else bsfit__buf_puts(&b, "\"knots_u\":");
   put_numbers(&b, s->knots_u, s->nu + (size_t)s->degree_u + 1);
   bsfit__buf_puts(&b, ",\"knots_v\":");
   put_numbers(&b, s->knots_v, s->nv + (size_t)s->degree_v + 1);
@@ -123,17 +125,17 @@ bsfit_err bsfit_surface_write_json(const bsfit_surface *s, const char *path, bsf
 ** ===================================================================== */
 
 enum { K_TYPE, K_DEG, K_DEGU, K_DEGV, K_DIM, K_PERIODIC, K_KNOTS, K_KNOTSU, K_KNOTSV, K_CTRL,
-       K_WEIGHTS, K_DOMAIN, K_DOMAINU, K_DOMAINV, NKEYS };
+       K_WEIGHTS, K_DOMAIN, K_DOMAINU, K_DOMAINV, K_PERIODICU, NKEYS };
 
 static const char *const key_names[NKEYS] = {
   "type", "degree", "degree_u", "degree_v", "dim", "periodic", "knots", "knots_u", "knots_v",
-  "control_points", "weights", "domain", "domain_u", "domain_v"};
+  "control_points", "weights", "domain", "domain_u", "domain_v", "periodic_u"};
 
 typedef struct doc {
   int seen[NKEYS];
   char type[32];
   double num[NKEYS]; /* degree, degree_u, degree_v, dim */
-  int periodic;
+  int periodic, periodic_u;
   bsfit__numarr arr[NKEYS];
   int surface;
 } doc;
@@ -167,6 +169,7 @@ static bsfit_err read_value(bsfit__json *j, doc *d, int k) {
     case K_TYPE: return bsfit__json_string(j, d->type, sizeof d->type);
     case K_DEG: case K_DEGU: case K_DEGV: case K_DIM: return bsfit__json_number(j, &d->num[k]);
     case K_PERIODIC: return bsfit__json_bool(j, &d->periodic);
+    case K_PERIODICU: return bsfit__json_bool(j, &d->periodic_u);
     default: return bsfit__json_numarray(j, &d->arr[k]);
   }
 }
@@ -424,6 +427,12 @@ static bsfit_err build_surface(const doc *d, bsfit_surface *s, const bsfit_alloc
   e = bsfit_surface_new(s, pu, pv, dim, nu, nv, d->arr[K_KNOTSU].v, d->arr[K_KNOTSV].v,
                         d->arr[K_CTRL].v, rational ? d->arr[K_WEIGHTS].v : NULL, a, st);
   if (e == BSFIT_OK) s->bezier = bezier;
+  if (e == BSFIT_OK && d->periodic_u) {
+    /* the expanded periodic form in u, checked like a periodic curve's */
+    s->periodic_u = 1;
+    e = bsfit_surface_validate(s, st);
+    if (e != BSFIT_OK) bsfit_surface_free(s);
+  }
   return e;
 }
 

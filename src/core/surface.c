@@ -81,6 +81,47 @@ static bsfit_err name_direction(bsfit_status *st, bsfit_err e, char dir) {
   return bsfit__fail(st, e, "%c knots: %s", dir, msg);
 }
 
+/* The expanded periodic form in u (as curve.c's validate_periodic): the last pu rows
+** repeat the first pu exactly, and the knot spans repeat with the period. */
+static bsfit_err validate_periodic_u(const bsfit_surface *s, bsfit_status *st) {
+  size_t i, p = (size_t)s->degree_u, N, row = s->nv * (size_t)s->dim;
+  const double *U = s->knots_u;
+  double tol;
+  if (s->degree_u < 1 || s->bezier || s->nu < 2 * p + 1 || s->nu < p + 2)
+    return bsfit__fail(st, BSFIT_ENOTPERIODIC,
+                       "surface periodic in u with degree %d needs more than %zu rows", s->degree_u,
+                       s->nu);
+  N = s->nu - p;
+  tol = 1e-12 * (fabs(U[p]) + fabs(U[N + p]) + (U[N + p] - U[p]));
+  for (i = 0; i < p * row; i++)
+    if (s->ctrl[i] != s->ctrl[N * row + i])
+      return bsfit__fail(st, BSFIT_ENOTPERIODIC, "wrapped row %zu differs from row %zu",
+                         N + i / row, i / row);
+  for (i = 0; s->weights && i < p * s->nv; i++)
+    if (s->weights[i] != s->weights[N * s->nv + i])
+      return bsfit__fail(st, BSFIT_ENOTPERIODIC, "wrapped weights of row %zu differ from row %zu",
+                         N + i / s->nv, i / s->nv);
+  for (i = 1; i < nknots_u(s) - N; i++)
+    if (fabs((U[i + N] - U[i + N - 1]) - (U[i] - U[i - 1])) > tol)
+      return bsfit__fail(st, BSFIT_ENOTPERIODIC, "u knot spans %zu and %zu differ", i - 1,
+                         i + N - 1);
+  return BSFIT_OK;
+}
+
+/* u wrapped into the period [a, b) of a surface periodic in u (others unchanged). */
+static double wrap_u(const bsfit_surface *s, double u) {
+  double a, b, T;
+  if (!s->periodic_u) return u;
+  bsfit_knots_domain(s->knots_u, s->nu, s->degree_u, &a, &b);
+  T = b - a;
+  if (u < a || u >= b) {
+    u = a + fmod(u - a, T);
+    if (u < a) u += T;
+    if (u >= b) u = a; /* fmod rounding */
+  }
+  return u;
+}
+
 bsfit_err bsfit_surface_validate(const bsfit_surface *s, bsfit_status *st) {
   size_t i, np;
   bsfit_err e;
@@ -99,6 +140,7 @@ bsfit_err bsfit_surface_validate(const bsfit_surface *s, bsfit_status *st) {
     if (!isfinite(s->weights[i]) || !(s->weights[i] > 0))
       return bsfit__fail(st, BSFIT_EWEIGHT, "weight (%zu, %zu) is %g (must be positive and finite)",
                          i / s->nv, i % s->nv, s->weights[i]);
+  if (s->periodic_u && (e = validate_periodic_u(s, st)) != BSFIT_OK) return e;
   if (s->bezier && (s->nu != (size_t)s->degree_u + 1 || s->nv != (size_t)s->degree_v + 1))
     return bsfit__fail(st, BSFIT_EINVAL,
                        "a Bezier surface of degrees (%d, %d) needs %d x %d control points",
@@ -160,6 +202,7 @@ bsfit_err bsfit_surface_copy(const bsfit_surface *src, bsfit_surface *dst,
   memcpy(dst->ctrl, src->ctrl, npoints(src) * (size_t)src->dim * sizeof(double));
   if (src->weights) memcpy(dst->weights, src->weights, npoints(src) * sizeof(double));
   dst->bezier = src->bezier;
+  dst->periodic_u = src->periodic_u;
   return bsfit__ok(st);
 }
 
@@ -226,6 +269,7 @@ bsfit_err bsfit_surface_eval(const bsfit_surface *s, double u, double v, double 
     eval_bezier(s, u, v, out);
     return bsfit__ok(st);
   }
+  u = wrap_u(s, u);
   su = bsfit_knots_find_span(s->knots_u, s->nu, s->degree_u, u);
   sv = bsfit_knots_find_span(s->knots_v, s->nv, s->degree_v, v);
   bsfit_basis_funs(su, u, s->degree_u, s->knots_u, Nu);
@@ -314,7 +358,7 @@ bsfit_err bsfit_surface_derivs(const bsfit_surface *s, double u, double v, int k
                        BSFIT_MAX_DEGREE);
   if (!isfinite(u) || !isfinite(v))
     return bsfit__fail(st, BSFIT_ENONFINITE, "parameter (%g, %g) is not finite", u, v);
-  homogeneous_derivs(s, u, v, k, out, W);
+  homogeneous_derivs(s, wrap_u(s, u), v, k, out, W);
   if (s->weights != NULL) {
     rational_derivs((size_t)s->dim, k, W, out);
   }

@@ -484,8 +484,22 @@ static bsfit_err write_csv(lua_State *L, const bsfit_curve *c, const char *path,
   return e;
 }
 
+/* One curve as STEP (dxf = 0) or DXF (dxf = 1); the formats hold 2D and 3D curves of
+** degree >= 1, which is misuse to ask otherwise. */
+static bsfit_err write_exchange(lua_State *L, const bsfit_curve *c, const char *path, int dxf,
+                                bsfit_status *st) {
+  const bsfit_curve *one[1];
+  if (c->dim < 2 || c->dim > 3 || c->degree < 1)
+    luaL_argerror(L, 2, lua_pushfstring(L, "%s holds 2D and 3D curves of degree >= 1, this one "
+                                           "has dim %d, degree %d", dxf ? "DXF" : "STEP", c->dim,
+                                        c->degree));
+  one[0] = c;
+  return dxf ? bsfit_curves_write_dxf(one, 1, path, st) : bsfit_curves_write_step(one, 1, path, st);
+}
+
 /* C:write(path [, {samples = 1000}]), by extension: ".json" (SPEC 4), ".svg" (the
-** curve over its control polygon), ".iges"/".igs" (entity 126), ".csv" (`samples`
+** curve over its control polygon), ".iges"/".igs" (entity 126), ".step"/".stp" (ISO
+** 10303-21) and ".dxf" (SPLINE; both in docs/exchange.md), ".csv" (`samples`
 ** points of the curve, as C:sample). The file is replaced atomically. Returns C, or
 ** nil, message, code when the file cannot be written. */
 static int curve_write(lua_State *L) {
@@ -501,12 +515,17 @@ static int curve_write(lua_State *L) {
   bsfit__lua_check_files(L, "write");
   if (ends_with(path, len, ".json")) e = bsfit_curve_write_json(c, path, &st);
   else if (ends_with(path, len, ".iges") || ends_with(path, len, ".igs")) e = bsfit_curve_write_iges(c, path, &st);
+  else if (ends_with(path, len, ".step") || ends_with(path, len, ".stp"))
+    e = write_exchange(L, c, path, 0, &st);
+  else if (ends_with(path, len, ".dxf")) e = write_exchange(L, c, path, 1, &st);
   else if (ends_with(path, len, ".svg") && c->dim >= 2) e = bsfit__lua_curve_svg(L, c, path, (size_t)k, &st);
   else if (ends_with(path, len, ".csv") && c->dim >= 2 && c->dim <= 3) e = write_csv(L, c, path, (size_t)k, &st);
   else if (ends_with(path, len, ".svg") || ends_with(path, len, ".csv"))
     return luaL_argerror(L, 2, lua_pushfstring(L, "a curve of dimension %d cannot be written as %s", c->dim,
                                                path + len - 4));
-  else return luaL_argerror(L, 2, "file name must end in .json, .svg, .iges, .igs or .csv");
+  else
+    return luaL_argerror(L, 2, "file name must end in .json, .svg, .iges, .igs, .step, .stp, "
+                               ".dxf or .csv");
   lua_settop(L, 1);
   return bsfit__lua_result(L, e, &st, 1, 2);
 }

@@ -364,6 +364,12 @@ static int surface_kind(lua_State *L) {
   return 1;
 }
 
+/* S:is_periodic() --> true when closed around u (a skinned surface: periodic_u) */
+static int surface_is_periodic(lua_State *L) {
+  lua_pushboolean(L, checksurface(L, 1)->periodic_u);
+  return 1;
+}
+
 static int surface_is_rational(lua_State *L) {
   lua_pushboolean(L, checksurface(L, 1)->weights != NULL);
   return 1;
@@ -437,19 +443,36 @@ static int ends_with(const char *s, size_t len, const char *ext) {
   return len > n && strcmp(s + len - n, ext) == 0;
 }
 
-/* S:write(path): ".json" or ".iges" by extension, replaced atomically; returns S, or
+/* S:write(path [, {samples_u = 100, samples_v = 100}]): ".json", ".iges", ".step" or
+** ".obj" (a triangle mesh of samples_u x samples_v points) by extension, replaced
+** atomically; returns S, or
 ** nil, message, code when the file cannot be written */
 static int surface_write(lua_State *L) {
+  static const char *const opts[] = {"samples_u", "samples_v", NULL};
   bsfit_surface *s = checksurface(L, 1);
   size_t len;
   const char *path = luaL_checklstring(L, 2, &len);
+  int t = bsfit__lua_opttable(L, 3, opts);
+  lua_Integer ku = opt_integer(L, t, "samples_u", 100), kv = opt_integer(L, t, "samples_v", 100);
   bsfit_status st;
   bsfit_err e;
+  if (ku < 2 || ku > 100000) return luaL_argerror(L, t, "field 'samples_u' must be in 2..100000");
+  if (kv < 2 || kv > 100000) return luaL_argerror(L, t, "field 'samples_v' must be in 2..100000");
   bsfit__lua_check_files(L, "write");
   if (ends_with(path, len, ".json")) e = bsfit_surface_write_json(s, path, &st);
   else if (ends_with(path, len, ".iges") || ends_with(path, len, ".igs"))
     e = bsfit_surface_write_iges(s, path, &st);
-  else return luaL_argerror(L, 2, "file name must end in .json, .iges or .igs");
+  else if (ends_with(path, len, ".step") || ends_with(path, len, ".stp")) {
+    if (s->dim < 2 || s->dim > 3 || s->degree_u < 1 || s->degree_v < 1)
+      return luaL_argerror(L, 2, "STEP holds 2D and 3D surfaces of degrees >= 1");
+    e = bsfit_surface_write_step(s, path, &st);
+  } else if (ends_with(path, len, ".obj")) {
+    if (s->dim < 2 || s->dim > 3)
+      return luaL_argerror(L, 2, "an OBJ mesh needs a 2D or 3D surface");
+    e = bsfit_surface_write_obj(s, (size_t)ku, (size_t)kv, path, &st);
+  } else {
+    return luaL_argerror(L, 2, "file name must end in .json, .iges, .igs, .step, .stp or .obj");
+  }
   lua_settop(L, 1);
   return bsfit__lua_result(L, e, &st, 1, 2);
 }
@@ -479,7 +502,8 @@ static const luaL_Reg surface_meth[] = {
   {"eval", surface_eval}, {"deriv", surface_deriv}, {"normal", surface_normal},
   {"sample", surface_sample}, {"domain", surface_domain}, {"degree", surface_degree},
   {"dim", surface_dim}, {"count", surface_count}, {"kind", surface_kind},
-  {"is_rational", surface_is_rational}, {"knots_u", surface_knots_u},
+  {"is_rational", surface_is_rational}, {"is_periodic", surface_is_periodic},
+  {"knots_u", surface_knots_u},
   {"knots_v", surface_knots_v}, {"control_points", surface_control_points},
   {"weights", surface_weights}, {"copy", surface_copy}, {"to_json", surface_to_json},
   {"write", surface_write}, {"close", surface_gc}, {NULL, NULL}};

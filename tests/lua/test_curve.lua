@@ -235,5 +235,5 @@ T.test("JSON: SPEC 4 keys, and from_json(to_json(C)) is the same curve", functio
   os.remove(path)
   T.fails("EFORMAT", bs.curve.from_json, "{\"type\": \"bspline\"")
   T.fails("EIO", bs.curve.read, path .. ".missing")
-  T.raises("bad argument #1 to 'write' (file name must end in .json, .svg, .iges, .igs or .csv)", function() C:write("c.txt") end)
+  T.raises("bad argument #1 to 'write' (file name must end in .json, .svg, .iges, .igs, .step, .stp, .dxf or .csv)", function() C:write("c.txt") end)
 end)

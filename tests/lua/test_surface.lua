@@ -222,7 +222,7 @@ T.test("misuse raises with the argument named", function()
   T.raises({match = "^bad argument #1 to 'eval' %(parameter .* is not finite%)$"}, function() S:eval(0 / 0, 0.5) end)
   T.raises("bad argument #3 to 'deriv' (derivative order out of range 0..30)", function() S:deriv(0.5, 0.5, -1, 0) end)
   T.raises("bad argument #2 to 'sample' (count 1 out of range 2..9223372036854775807)", function() S:sample(5, 1) end)
-  T.raises("bad argument #1 to 'write' (file name must end in .json, .iges or .igs)", function() S:write("s.txt") end)
+  T.raises("bad argument #1 to 'write' (file name must end in .json, .iges, .igs, .step, .stp or .obj)", function() S:write("s.txt") end)
   local flat = bs.surface.new{degree_u = 1, degree_v = 1, control_points = {{{0, 0}, {0, 1}}, {{1, 0}, {1, 1}}}}
   T.raises({match = "normal"}, function() flat:normal(0.5, 0.5) end)
   T.raises("bad argument #1 to 'eval' (bsfit.Surface expected, got bsfit.Curve)",

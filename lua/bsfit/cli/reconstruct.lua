@@ -28,7 +28,7 @@ usage: bsfit reconstruct [INPUT...] [options]
   --tol T          auto, periodic: add control points until the max deviation is <= T
   --open           fit open curves (auto and periodic strategies)
   --samples K      curve samples written to <name>.csv (default 1000)
-  --format LIST    any of json,svg,csv,iges (default json,svg,csv)
+  --format LIST    any of json,svg,csv,iges,step,dxf (default json,svg,csv)
   -j N             run N sections at a time, one Lua state per worker (default 1)
   -q               no progress line
   -h, --help       this text
@@ -50,12 +50,12 @@ local function positive_integer(s, what)
   return n
 end
 
-local formats_known = { json = true, svg = true, csv = true, iges = true }
+local formats_known = { json = true, svg = true, csv = true, iges = true, step = true, dxf = true }
 
 local function parse_formats(s)
   local f = {}
   for name in tostring(s):gmatch("[^,]+") do
-    if not formats_known[name] then error(("unknown format '%s' (json, svg, csv, iges)"):format(name), 0) end
+    if not formats_known[name] then error(("unknown format '%s' (json, svg, csv, iges, step, dxf)"):format(name), 0) end
     f[name] = true
   end
   return f
@@ -266,9 +266,11 @@ local function write_outputs(spec, P, C, rep, S)
   local base = spec.outdir .. "/" .. spec.name
   local f = spec.formats
   if f.json then report.must_write(base .. ".json", C:to_json()) end
-  if f.iges then
-    local ok, err = C:write(base .. ".iges")
-    if not ok then error("cannot write " .. base .. ".iges: " .. tostring(err), 0) end
+  for _, ext in ipairs { "iges", "step", "dxf" } do -- CAD exchange, written by C:write
+    if f[ext] then
+      local ok, err = C:write(base .. "." .. ext)
+      if not ok then error("cannot write " .. base .. "." .. ext .. ": " .. tostring(err), 0) end
+    end
   end
   if f.csv then report.must_write(base .. ".csv", points_csv(S)) end
   if f.svg then
