@@ -46,7 +46,9 @@ static int write_curves(lua_State *L, curves_writer w, const char *format) {
   size_t n;
   const bsfit_curve *const *c = check_curves(L, 1, &n, format);
   bsfit_status st;
-  bsfit_err e = w(c, n, path, &st);
+  bsfit_err e;
+  bsfit__lua_check_files(L, w == bsfit_curves_write_step ? "bs.io.write_step" : "bs.io.write_dxf");
+  e = w(c, n, path, &st);
   lua_pushboolean(L, 1);
   return bsfit__lua_result(L, e, &st, 1, 1);
 }

@@ -280,11 +280,17 @@ static void test_classic_escapes(void **state) {
          "not allowed");
   expect(e, MAKE_OBJECTS "objs[7]:write('/tmp/bsfit_sandbox_x.svg')", BSFIT_EINVAL,
          "not allowed");
+  expect(e, MAKE_OBJECTS "bs.io.write_step({C}, '/tmp/bsfit_sandbox_x.step')", BSFIT_EINVAL,
+         "bs.io.write_step: file access is not allowed");
+  expect(e, MAKE_OBJECTS "bs.io.write_dxf({C}, '/tmp/bsfit_sandbox_x.dxf')", BSFIT_EINVAL,
+         "bs.io.write_dxf: file access is not allowed");
   expect(e, "require('bsfit').parallel.map('bsfit', 'x', {'a'}, 2)", BSFIT_EINVAL,
          "bs.parallel.map is not allowed in the sandbox");
   assert_int_equal(access("/tmp/bsfit_sandbox_x.csv", F_OK), -1);
   assert_int_equal(access("/tmp/bsfit_sandbox_x.json", F_OK), -1);
   assert_int_equal(access("/tmp/bsfit_sandbox_x.svg", F_OK), -1);
+  assert_int_equal(access("/tmp/bsfit_sandbox_x.step", F_OK), -1);
+  assert_int_equal(access("/tmp/bsfit_sandbox_x.dxf", F_OK), -1);
   bsfit_engine_free(e);
 }
 
