@@ -254,7 +254,7 @@ local function control_table(C)
 end
 
 -- Writes the requested files of a fitted section.
-local function write_outputs(spec, P, C, rep, S)
+local function write_outputs(spec, P, C, rep, S, w)
   local base = spec.outdir .. "/" .. spec.name
   local f = spec.formats
   if f.json then report.must_write(base .. ".json", C:to_json()) end
@@ -264,16 +264,13 @@ local function write_outputs(spec, P, C, rep, S)
   end
   if f.csv then report.must_write(base .. ".csv", points_csv(S)) end
   if f.svg then
-    local markers = {}
-    local sx, sy = P:get(rep.start_index or 1)
-    markers[1] = { sx, sy, "start" }
-    if rep.max_index then
-      local wx, wy = P:get(rep.max_index)
-      markers[2] = { wx, wy, ("max %.3g"):format(rep.max) }
-    end
     report.must_write(base .. ".svg", svg.section {
       points = P, samples = S, control = control_table(C), closed = C:is_periodic(),
-      markers = markers, title = spec.name })
+      polygon = spec.polygon, residuals = rep.residuals, weights = w, trust = rep.trust,
+      start_index = rep.start_index, max_index = rep.max_index, max = rep.max,
+      corners = rep.corners, pieces = rep.pieces, title = spec.name,
+      subtitle = ("%d points, %d control points, RMS %.3g, max %.3g (strategy %s)")
+        :format(#P, C:distinct(), rep.rms or 0 / 0, rep.max or 0 / 0, spec.strategy) })
   end
 end
 
@@ -303,7 +300,7 @@ function M.section(spec)
     row.rms, row.max, row.max_index = rep.rms, rep.max, rep.max_index
     row.max_trusted = rep.max_trusted -- set when the file down-weights some points
     row.start_index = rep.start_index
-    write_outputs(spec, P, C, rep, samples(C, spec.samples))
+    write_outputs(spec, P, C, rep, samples(C, spec.samples), w)
   end)
   if not ok then
     row.status, row.error = "error", tostring(err):gsub("\n.*", "")
@@ -384,9 +381,8 @@ local function write_summaries(o, rows)
   report.must_write(o.outdir .. "/timing.csv", report.csv({ "name", "ms" }, timing))
   local items = {}
   for i, r in ipairs(rows) do
-    items[i] = { name = r.name, svg = (o.formats.svg and r.status == "ok") and (r.name .. ".svg") or nil,
-                 caption = r.status == "ok" and ("%s: %d points, %d control points, max %.3g")
-                   :format(r.name, r.points, r.control_points, r.max) or (r.name .. ": " .. r.error) }
+    items[i] = setmetatable({ svg = (o.formats.svg and r.status == "ok") and (r.name .. ".svg") or nil },
+                            { __index = r })
   end
   report.must_write(o.outdir .. "/index.html", svg.index("bsfit reconstruct", items))
 end
