@@ -125,17 +125,6 @@ T.test("report.write_atomic: replaces the file, leaves no temporary", function()
   os.execute("rm -rf '" .. d .. "'")
 end)
 
-T.test("svg.section: y axis up, every layer present", function()
-  local P = bs.points.new { { 0, 0 }, { 10, 0 }, { 10, 5 } }
-  local text = svg.section { points = P, control = { { 0, 0 }, { 10, 5 } }, samples = P, closed = true,
-                             markers = { { 10, 5, "a<b" } }, title = "t", width = 224 }
-  -- width 224, margin 24: scale 17.6; (10, 5) maps to (200, 24) and (0, 0) to (24, 112)
-  T.ok(text:find('cx="200.00" cy="24.00"', 1, true), "top right point")
-  T.ok(text:find('cx="24.00" cy="112.00"', 1, true), "origin at the bottom")
-  T.ok(text:find("a&lt;b", 1, true), "labels escaped")
-  T.ok(text:find('class="curve"', 1, true) and text:find('class="control"', 1, true))
-end)
-
 T.test("the demo set is found next to the lua directory", function()
   if os.getenv("BSFIT_DEMO_DIR") then return end
   local d = rc.demo_dir()
