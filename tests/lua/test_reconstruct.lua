@@ -73,7 +73,7 @@ T.test("section: a good file gives its files and an ok row", function()
   local C = bs.curve.from_json and bs.curve.from_json(slurp(d .. "/cam.json"))
   if C then T.eq(C:distinct(), row.control_points) end
   local pic = slurp(d .. "/cam.svg")
-  T.ok(pic:find("<svg", 1, true) and pic:find(">start<", 1, true) and pic:find(">max ", 1, true),
+  T.ok(pic:find("<svg", 1, true) and pic:find(">start point<", 1, true) and pic:find(">max ", 1, true),
        "the picture marks the start point and the worst residual")
   os.execute("rm -rf '" .. d .. "'")
 end)
