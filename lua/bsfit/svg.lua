@@ -108,6 +108,7 @@ end
 -- The box {x0, y0, x1, y1} of the whole section (every point, the samples, the
 -- control points when drawn), padded by 4% of its larger side.
 local function data_box(P, to2, sets)
+  P = P or {}
   local x0, y0, x1, y1 = math.huge, math.huge, -math.huge, -math.huge
   local function add(x, y)
     if x < x0 then x0 = x end
@@ -115,7 +116,7 @@ local function data_box(P, to2, sets)
     if y < y0 then y0 = y end
     if y > y1 then y1 = y end
   end
-  for i = 1, #P do add(to2(P:get(i))) end
+  for i = 1, #P do add(to2(P:get(i))) end -- (P may be an empty table)
   for _, s in ipairs(sets) do for _, q in ipairs(s) do add(q[1], q[2]) end end
   if x0 > x1 then x0, y0, x1, y1 = 0, 0, 1, 1 end
   local side = math.max(x1 - x0, y1 - y0)
@@ -461,6 +462,48 @@ function M.section(o)
   legend(f, o, d, entries, out)
   for _, t in ipairs(texts) do out[#out + 1] = t end
   out[#out + 1] = "</svg>\n"
+  return table.concat(out, "\n")
+end
+
+-- The SVG text of curves drawn together (bsfit filter: before and after), with axes,
+-- a scale bar and a legend. o: curves (array of {samples = Points, closed, label,
+-- class, colour, width (pixels), dash (pixels or nil)}), title, subtitle, size (640).
+function M.curves(o)
+  local sets, to2 = {}, function(x, y) return x, y end
+  local all = {}
+  for k, c in ipairs(o.curves) do
+    sets[k] = thin_samples(c.samples, o.max_samples or M.MAX_SAMPLES, to2)
+    for _, q in ipairs(sets[k]) do all[#all + 1] = q end
+  end
+  local d = { notes = {}, box = data_box(nil, to2, { all }) }
+  local entries = {}
+  for k, c in ipairs(o.curves) do entries[k] = { "line:" .. k, c.label } end
+  local f = layout({ size = o.size, title = o.title, subtitle = o.subtitle }, d, entries)
+  local l, _, _, t = f:view()
+  local out = { f:open(), ('<rect class="background" x="%s" y="%s" width="%s" height="%s" fill="#fff"/>')
+    :format(f:c(l), f:c(-t), f:c(f:px(f.width)), f:c(f:px(f.height))),
+    '<g class="data" transform="scale(1,-1)">' }
+  local labels = axes(f, out, "x", "y")
+  local function style(c)
+    return ('stroke="%s" stroke-width="%s"%s'):format(c.colour, f:c(f:px(c.width or 2)),
+      c.dash and (' stroke-dasharray="%s"'):format(f:c(f:px(c.dash))) or "")
+  end
+  for k, c in ipairs(o.curves) do
+    out[#out + 1] = polyline(f, sets[k], c.closed, ('class="%s" %s'):format(c.class or "curve", style(c)))
+  end
+  out[#out + 1] = "</g>"
+  labels(out)
+  scale_bar(f, out)
+  header(f, o, d, out)
+  local x, y = f.x1 + f:px(18), f.y1 - f:px(4)
+  out[#out + 1] = '<g class="legend" fill="#222">'
+  for _, c in ipairs(o.curves) do
+    y = y - f:px(20)
+    out[#out + 1] = ('<line x1="%s" y1="%s" x2="%s" y2="%s" %s/>')
+      :format(f:X(x), f:Y(y), f:X(x + f:px(22)), f:Y(y), style(c))
+    out[#out + 1] = f:text(x + f:px(28), y - f:px(plot.FONT / 3), c.label, plot.FONT)
+  end
+  out[#out + 1] = "</g></svg>\n"
   return table.concat(out, "\n")
 end
 
