@@ -354,6 +354,8 @@ function M.user_message(err, path, debug_on)
     local done = stripped == msg
     msg = stripped
   until done
+  -- "bad argument #1 to 'breaks' (5 points leave too few ...)": the reason alone
+  msg = msg:match("^bad argument #%d+ to '[^']*' %((.*)%)$") or msg
   if internal and msg:match("^attempt to") then
     msg = "internal error (" .. msg .. "); rerun with --debug for the details"
   end
