@@ -27,8 +27,8 @@ th.sorted-down::after{content:" \25BC"}
 td.num{text-align:right;font-variant-numeric:tabular-nums}
 tr.error td{background:#fde8e8}
 tr.error td.status{color:#b00020;font-weight:bold}
-td.pic img{width:360px;display:block;background:#fff}
-td.msg{max-width:320px}]]
+td.pic img{width:600px;max-width:60vw;display:block;background:#fff}
+td.msg{max-width:260px}]]
 
 -- Sorts the table by the clicked column: numbers as numbers (data-v), text as text;
 -- a second click reverses.
