@@ -262,7 +262,7 @@ local function legend_symbol(f, kind, x, y)
     return line:format(X, Y, X2, Y, ('stroke="#999" stroke-width="%s" stroke-dasharray="%s"')
       :format(f:c(f:px(1)), f:c(f:px(4))))
   elseif kind:match("^piece:") then
-    return line:format(X, Y, X2, Y, ('stroke="%s" stroke-opacity="0.35" stroke-width="%s" stroke-linecap="round"')
+    return line:format(f:X(x + f:px(5)), Y, f:X(x + f:px(17)), Y, ('stroke="%s" stroke-opacity="0.35" stroke-width="%s" stroke-linecap="round"')
       :format(plot.piece_colour[kind:sub(7)] or "#999", f:c(f:px(9))))
   elseif kind == "corner" then
     local h = f:px(5)
@@ -300,6 +300,9 @@ local function legend(f, o, d, entries, out)
   for k, v in ipairs(ticks) do
     local yy = top - f:px(h) * (1 - v / (d.rmax > 0 and d.rmax or 1))
     out[#out + 1] = f:text(x + f:px(w + 6), yy - f:px(plot.SMALL / 3), labels[k], plot.SMALL, "start")
+  end
+  if d.rmax > 0 and (d.rmax - ticks[#ticks]) / d.rmax * h > plot.SMALL + 3 then -- the top's value
+    out[#out + 1] = f:text(x + f:px(w + 6), top - f:px(plot.SMALL / 3), plot.num(d.rmax), plot.SMALL, "start")
   end
   out[#out + 1] = "</g>"
 end
