@@ -37,7 +37,9 @@ document.querySelectorAll("th").forEach(function (th, col) {
   th.addEventListener("click", function () {
     var tbody = th.closest("table").tBodies[0];
     var up = !th.classList.contains("sorted-up");
-    document.querySelectorAll("th").forEach(function (h) { h.classList.remove("sorted-up", "sorted-down"); });
+    document.querySelectorAll("th").forEach(function (h) {
+      h.classList.remove("sorted-up", "sorted-down");
+    });
     th.classList.add(up ? "sorted-up" : "sorted-down");
     var rows = Array.prototype.slice.call(tbody.rows);
     rows.sort(function (a, b) {
@@ -59,7 +61,8 @@ local function row_html(r)
   local ok = r.status == "ok"
   local pic = '<td class="pic" data-v="">no picture</td>'
   if r.svg then
-    pic = ('<td class="pic" data-v="%s"><a href="%s"><img src="%s" alt="%s" loading="lazy"></a></td>')
+    pic = ('<td class="pic" data-v="%s"><a href="%s"><img src="%s" alt="%s" loading="lazy">'
+           .. '</a></td>')
       :format(esc(r.name), esc(r.svg), esc(r.svg), esc(r.name))
   end
   local name = r.svg and ('<a href="%s">%s</a>'):format(esc(r.svg), esc(r.name)) or esc(r.name)
@@ -92,7 +95,8 @@ function M.page(title, rows)
     "<!DOCTYPE html>", '<html lang="en"><head><meta charset="utf-8">',
     "<title>" .. esc(title) .. "</title>", "<style>" .. style .. "</style></head><body>",
     "<h1>" .. esc(title) .. "</h1>",
-    ('<p class="totals">%d sections: %d ok, %d failed, %d with warnings. Click a column header to sort; click a picture to open it at full size.</p>')
+    ('<p class="totals">%d sections: %d ok, %d failed, %d with warnings. Click a column header '
+     .. 'to sort; click a picture to open it at full size.</p>')
       :format(#rows, #rows - failed, failed, warned),
     "<table><thead><tr><th>picture</th><th>name</th><th>points</th><th>control points</th>"
       .. "<th>RMS</th><th>max</th><th>status</th><th>warnings / error</th></tr></thead><tbody>" }

@@ -141,7 +141,8 @@ end
 -- The opening <svg> element: viewBox in data units (y of the box is -top).
 function Frame:open()
   local l, _, _, t = self:view()
-  return ('<svg xmlns="http://www.w3.org/2000/svg" width="%d" height="%d" viewBox="%s %s %s %s" font-family="sans-serif">')
+  return ('<svg xmlns="http://www.w3.org/2000/svg" width="%d" height="%d" viewBox="%s %s %s %s" '
+          .. 'font-family="sans-serif">')
     :format(math.ceil(self.width), math.ceil(self.height), self:c(l), self:c(-t),
             self:c(self:px(self.width)), self:c(self:px(self.height)))
 end

@@ -5,7 +5,8 @@
 -- terminal; and the final line.
 --
 --   local progress = require "bsfit.progress"
---   local p = progress.new{total = 40, live = true, out = io.stderr, prefix = "bsfit reconstruct: "}
+--   local p = progress.new{total = 40, live = true, out = io.stderr,
+--                          prefix = "bsfit reconstruct: "}
 --   p:ended(ok, failure_line)   -- once per section, as it ends
 --   p:finish()                  -- clears the line
 

@@ -110,7 +110,8 @@ function M.json_decode(s)
       out[#out + 1] = s:sub(pos, a - 1)
       if s:sub(a, a) == '"' then pos = b + 1; break end
       local c = s:sub(a + 1, a + 1)
-      local simple = { b = "\b", f = "\f", n = "\n", r = "\r", t = "\t", ['"'] = '"', ["\\"] = "\\", ["/"] = "/" }
+      local simple = { b = "\b", f = "\f", n = "\n", r = "\r", t = "\t", ['"'] = '"',
+                       ["\\"] = "\\", ["/"] = "/" }
       if simple[c] then out[#out + 1] = simple[c]; pos = a + 2
       elseif c == "u" then
         local hex = s:match("^%x%x%x%x", a + 2) or fail("bad \\u escape")

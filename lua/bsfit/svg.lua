@@ -141,6 +141,9 @@ local function polyline(f, pts, closed, attrs)
                                                     table.concat(t, " "), attrs)
 end
 
+local LINE = '<line x1="%s" y1="%s" x2="%s" y2="%s"/>'
+local BACKGROUND = '<rect class="background" x="%s" y="%s" width="%s" height="%s" fill="#fff"/>'
+
 -- The axes: a frame, light grid lines and tick labels (left and bottom).
 local function axes(f, out, xlabel, ylabel)
   local sw = f:c(f:px(1))
@@ -148,13 +151,14 @@ local function axes(f, out, xlabel, ylabel)
   local yt, yl = plot.ticks(f.y0, f.y1, math.max(3, f.plot_h / 80))
   out[#out + 1] = ('<g class="grid" stroke="#e4e4e4" stroke-width="%s">'):format(sw)
   for _, x in ipairs(xt) do
-    out[#out + 1] = ('<line x1="%s" y1="%s" x2="%s" y2="%s"/>'):format(f:c(x), f:c(f.y0), f:c(x), f:c(f.y1))
+    out[#out + 1] = LINE:format(f:c(x), f:c(f.y0), f:c(x), f:c(f.y1))
   end
   for _, y in ipairs(yt) do
-    out[#out + 1] = ('<line x1="%s" y1="%s" x2="%s" y2="%s"/>'):format(f:c(f.x0), f:c(y), f:c(f.x1), f:c(y))
+    out[#out + 1] = LINE:format(f:c(f.x0), f:c(y), f:c(f.x1), f:c(y))
   end
   out[#out + 1] = "</g>"
-  out[#out + 1] = ('<rect class="axes" x="%s" y="%s" width="%s" height="%s" fill="none" stroke="#555" stroke-width="%s"/>')
+  out[#out + 1] = ('<rect class="axes" x="%s" y="%s" width="%s" height="%s" fill="none" '
+                   .. 'stroke="#555" stroke-width="%s"/>')
     :format(f:c(f.x0), f:c(f.y0), f:c(f.x1 - f.x0), f:c(f.y1 - f.y0), sw)
   return function(texts) -- tick labels go outside the flipped group
     texts[#texts + 1] = '<g class="ticks" fill="#333">'
@@ -164,7 +168,8 @@ local function axes(f, out, xlabel, ylabel)
     for i, y in ipairs(yt) do
       texts[#texts + 1] = f:text(f.x0 - f:px(5), y - f:px(plot.SMALL / 3), yl[i], plot.SMALL, "end")
     end
-    texts[#texts + 1] = f:text((f.x0 + f.x1) / 2, f.y0 - f:px(8 + 2 * plot.SMALL), xlabel, plot.SMALL, "middle")
+    texts[#texts + 1] = f:text((f.x0 + f.x1) / 2, f.y0 - f:px(8 + 2 * plot.SMALL), xlabel,
+                               plot.SMALL, "middle")
     texts[#texts + 1] = f:text(f.x0 - f:px(8), f.y1 + f:px(6), ylabel, plot.SMALL, "end")
     texts[#texts + 1] = "</g>"
   end
@@ -175,7 +180,8 @@ local function scale_bar(f, texts)
   local len = plot.nice_floor((f.x1 - f.x0) / 4)
   local y = f.y0 - f:px(3 * plot.SMALL + 22)
   local x = f.x0
-  texts[#texts + 1] = ('<g class="scalebar"><rect x="%s" y="%s" width="%s" height="%s" fill="#333"/>')
+  texts[#texts + 1] = ('<g class="scalebar"><rect x="%s" y="%s" width="%s" height="%s" '
+                       .. 'fill="#333"/>')
     :format(f:X(x), f:Y(y), f:c(len), f:c(f:px(4)))
   texts[#texts + 1] = f:text(x + len + f:px(6), y - f:px(plot.SMALL - 2),
                              ("%s (data units)"):format(plot.num(len, 6)), plot.SMALL, "start")
@@ -227,7 +233,7 @@ end
 -- The legend's entries {symbol, label} for what the picture holds.
 local function legend_entries(o, d)
   local e = {}
-  e[#e + 1] = { o.residuals and "point" or "plain", o.residuals and "points (colour: residual)" or "points" }
+  e[#e + 1] = o.residuals and { "point", "points (colour: residual)" } or { "plain", "points" }
   if d.cut then
     e[#e + 1] = { "hollow", ("down-weighted (w < %s)"):format(plot.num(d.cut)) }
   end
@@ -239,9 +245,14 @@ local function legend_entries(o, d)
   end
   local kinds = {}
   for _, pc in ipairs(o.pieces or {}) do
-    if not kinds[pc.kind] then kinds[pc.kind] = true; e[#e + 1] = { "piece:" .. pc.kind, pc.kind .. " piece" } end
+    if not kinds[pc.kind] then
+      kinds[pc.kind] = true
+      e[#e + 1] = { "piece:" .. pc.kind, pc.kind .. " piece" }
+    end
   end
-  if o.corners and #o.corners > 0 then e[#e + 1] = { "corner", ("corner (%d)"):format(#o.corners) } end
+  if o.corners and #o.corners > 0 then
+    e[#e + 1] = { "corner", ("corner (%d)"):format(#o.corners) }
+  end
   if o.start_index then e[#e + 1] = { "start", "start point" } end
   if o.max_index then e[#e + 1] = { "max", "largest residual" } end
   return e
@@ -255,21 +266,24 @@ local function legend_symbol(f, kind, x, y)
   if kind == "point" or kind == "plain" then
     return ('<circle cx="%s" cy="%s" r="%s" fill="%s"/>'):format(X1, Y, r, plot.viridis(0.5))
   elseif kind == "hollow" then
-    return ('<circle cx="%s" cy="%s" r="%s" fill="none" stroke="#888" stroke-width="%s"/>'):format(X1, Y, r, sw)
+    return ('<circle cx="%s" cy="%s" r="%s" fill="none" stroke="#888" stroke-width="%s"/>')
+      :format(X1, Y, r, sw)
   elseif kind == "curve" then
     return line:format(X, Y, X2, Y, ('stroke="#d62728" stroke-width="%s"'):format(f:c(f:px(2))))
   elseif kind == "polygon" then
     return line:format(X, Y, X2, Y, ('stroke="#999" stroke-width="%s" stroke-dasharray="%s"')
       :format(f:c(f:px(1)), f:c(f:px(4))))
   elseif kind:match("^piece:") then
-    return line:format(f:X(x + f:px(5)), Y, f:X(x + f:px(17)), Y, ('stroke="%s" stroke-opacity="0.35" stroke-width="%s" stroke-linecap="round"')
+    return line:format(f:X(x + f:px(5)), Y, f:X(x + f:px(17)), Y,
+      ('stroke="%s" stroke-opacity="0.35" stroke-width="%s" stroke-linecap="round"')
       :format(plot.piece_colour[kind:sub(7)] or "#999", f:c(f:px(9))))
   elseif kind == "corner" then
     local h = f:px(5)
     return ('<polygon points="%s,%s %s,%s %s,%s %s,%s" fill="#000"/>'):format(
       X1, f:Y(y + h), f:X(x + f:px(11) + h), Y, X1, f:Y(y - h), f:X(x + f:px(11) - h), Y)
   elseif kind == "start" then
-    return ('<rect x="%s" y="%s" width="%s" height="%s" fill="none" stroke="#009e73" stroke-width="%s"/>')
+    return ('<rect x="%s" y="%s" width="%s" height="%s" fill="none" stroke="#009e73" '
+            .. 'stroke-width="%s"/>')
       :format(f:X(x + f:px(6)), f:Y(y + f:px(5)), f:c(f:px(10)), f:c(f:px(10)), f:c(f:px(2)))
   elseif kind == "max" then
     return ('<circle cx="%s" cy="%s" r="%s" fill="none" stroke="#d55e00" stroke-width="%s"/>')
@@ -294,15 +308,17 @@ local function legend(f, o, d, entries, out)
   out[#out + 1] = '<g class="colorbar" fill="#222">'
   out[#out + 1] = f:text(x, y, "residual (distance to the curve)", plot.FONT)
   local top = y - f:px(12)
-  out[#out + 1] = ('<rect x="%s" y="%s" width="%s" height="%s" fill="url(#viridis)" stroke="#555" stroke-width="%s"/>')
+  out[#out + 1] = ('<rect x="%s" y="%s" width="%s" height="%s" fill="url(#viridis)" '
+                   .. 'stroke="#555" stroke-width="%s"/>')
     :format(f:X(x), f:Y(top), f:c(f:px(w)), f:c(f:px(h)), f:c(f:px(0.8)))
   local ticks, labels = plot.ticks(0, d.rmax > 0 and d.rmax or 1, 4)
   for k, v in ipairs(ticks) do
     local yy = top - f:px(h) * (1 - v / (d.rmax > 0 and d.rmax or 1))
-    out[#out + 1] = f:text(x + f:px(w + 6), yy - f:px(plot.SMALL / 3), labels[k], plot.SMALL, "start")
+    out[#out + 1] = f:text(x + f:px(w + 6), yy - f:px(plot.SMALL / 3), labels[k], plot.SMALL)
   end
   if d.rmax > 0 and (d.rmax - ticks[#ticks]) / d.rmax * h > plot.SMALL + 3 then -- the top's value
-    out[#out + 1] = f:text(x + f:px(w + 6), top - f:px(plot.SMALL / 3), plot.num(d.rmax), plot.SMALL, "start")
+    local label = plot.num(d.rmax)
+    out[#out + 1] = f:text(x + f:px(w + 6), top - f:px(plot.SMALL / 3), label, plot.SMALL)
   end
   out[#out + 1] = "</g>"
 end
@@ -324,7 +340,8 @@ local function draw_pieces(f, o, d, out)
       pts[#pts + 1] = { d.to2(P:get((pc.first - 1 + k) % m + 1)) }
     end
     pts[#pts + 1] = { d.to2(P:get((pc.first + pc.count - 2) % m + 1)) }
-    out[#out + 1] = polyline(f, pts, false, ('class="piece-%s" stroke="%s" stroke-opacity="0.35" stroke-width="%s" stroke-linecap="round" stroke-linejoin="round"')
+    out[#out + 1] = polyline(f, pts, false, ('class="piece-%s" stroke="%s" stroke-opacity="0.35" '
+      .. 'stroke-width="%s" stroke-linecap="round" stroke-linejoin="round"')
       :format(pc.kind, plot.piece_colour[pc.kind] or "#999", f:c(f:px(9))))
   end
 end
@@ -337,7 +354,8 @@ local function draw_points(f, o, d, out)
   for _, i in ipairs(d.idx) do
     local x, y = d.to2(P:get(i))
     if d.cut and at(o.weights, i) < d.cut then
-      out[#out + 1] = ('<circle class="down" cx="%s" cy="%s" r="%s" fill="none" stroke="#888" stroke-width="%s"/>')
+      out[#out + 1] = ('<circle class="down" cx="%s" cy="%s" r="%s" fill="none" stroke="#888" '
+                       .. 'stroke-width="%s"/>')
         :format(f:c(x), f:c(y), r, sw)
     else
       local res = at(o.residuals, i)
@@ -358,7 +376,8 @@ local function draw_marks(f, o, d, out)
   end
   if o.start_index then
     local x, y = d.to2(P:get(o.start_index))
-    out[#out + 1] = ('<rect class="start" x="%s" y="%s" width="%s" height="%s" fill="none" stroke="#009e73" stroke-width="%s"/>')
+    out[#out + 1] = ('<rect class="start" x="%s" y="%s" width="%s" height="%s" fill="none" '
+                     .. 'stroke="#009e73" stroke-width="%s"/>')
       :format(f:c(x - h), f:c(y - h), f:c(2 * h), f:c(2 * h), f:c(f:px(2)))
   end
 end
@@ -369,19 +388,22 @@ local function draw_max(f, o, d, out, texts)
   if not o.max_index then return end
   local x, y = d.to2(o.points:get(o.max_index))
   local orange, fs = "#d55e00", plot.FONT
-  out[#out + 1] = ('<circle class="max" cx="%s" cy="%s" r="%s" fill="none" stroke="%s" stroke-width="%s"/>')
+  out[#out + 1] = ('<circle class="max" cx="%s" cy="%s" r="%s" fill="none" stroke="%s" '
+                   .. 'stroke-width="%s"/>')
     :format(f:c(x), f:c(y), f:c(f:px(7)), orange, f:c(f:px(2)))
   local down = d.cut and at(o.weights, o.max_index) < d.cut
-  local label = ("max %s at point %d%s"):format(plot.num(o.max or at(o.residuals, o.max_index) or 0),
-                                                o.max_index, down and " (down-weighted)" or "")
+  local value = o.max or at(o.residuals, o.max_index) or 0
+  local label = ("max %s at point %d%s"):format(plot.num(value), o.max_index,
+                                                down and " (down-weighted)" or "")
   local w = f:px(plot.text_width(label, fs))
   local l, _, r = f:view()
   local lx = math.max(math.min(f.x0, l + f:px(4)), math.min(x - w / 2, r - w - f:px(4)))
   lx = math.max(lx, math.min(f.x0, r - w - f:px(4)))
   local ly = f.y1 + f:px(8)
-  out[#out + 1] = ('<line class="max-leader" x1="%s" y1="%s" x2="%s" y2="%s" stroke="%s" stroke-width="%s" stroke-dasharray="%s"/>')
-    :format(f:c(x), f:c(y + f:px(7)), f:c(math.max(lx, math.min(x, lx + w))), f:c(ly - f:px(2)), orange,
-            f:c(f:px(1)), f:c(f:px(3)))
+  out[#out + 1] = ('<line class="max-leader" x1="%s" y1="%s" x2="%s" y2="%s" stroke="%s" '
+                   .. 'stroke-width="%s" stroke-dasharray="%s"/>')
+    :format(f:c(x), f:c(y + f:px(7)), f:c(math.max(lx, math.min(x, lx + w))), f:c(ly - f:px(2)),
+            orange, f:c(f:px(1)), f:c(f:px(3)))
   texts[#texts + 1] = f:text(lx, ly, label, fs, "start",
                              ('class="max-label" fill="%s" font-weight="bold"'):format(orange))
 end
@@ -441,18 +463,19 @@ function M.section(o)
   local f = layout(o, d, entries)
   local out, texts = { f:open(), gradient() }, {}
   local l, _, _, t = f:view()
-  out[#out + 1] = ('<rect class="background" x="%s" y="%s" width="%s" height="%s" fill="#fff"/>')
-    :format(f:c(l), f:c(-t), f:c(f:px(f.width)), f:c(f:px(f.height)))
+  out[#out + 1] = BACKGROUND:format(f:c(l), f:c(-t), f:c(f:px(f.width)), f:c(f:px(f.height)))
   out[#out + 1] = '<g class="data" transform="scale(1,-1)">'
   local flat = o.points:dim() == 3
   local labels = axes(f, out, flat and "u (in the plane)" or "x", flat and "v" or "y")
   draw_pieces(f, o, d, out)
   if d.polygon then
-    out[#out + 1] = polyline(f, d.control, o.closed, ('class="control" stroke="#999" stroke-width="%s" stroke-dasharray="%s"')
+    out[#out + 1] = polyline(f, d.control, o.closed,
+      ('class="control" stroke="#999" stroke-width="%s" stroke-dasharray="%s"')
       :format(f:c(f:px(1)), f:c(f:px(4))))
   end
   if d.samples then
-    out[#out + 1] = polyline(f, d.samples, o.closed, ('class="curve" stroke="#d62728" stroke-width="%s" stroke-linejoin="round"')
+    out[#out + 1] = polyline(f, d.samples, o.closed,
+      ('class="curve" stroke="#d62728" stroke-width="%s" stroke-linejoin="round"')
       :format(f:c(f:px(2))))
   end
   draw_points(f, o, d, out)
@@ -483,8 +506,8 @@ function M.curves(o)
   for k, c in ipairs(o.curves) do entries[k] = { "line:" .. k, c.label } end
   local f = layout({ size = o.size, title = o.title, subtitle = o.subtitle }, d, entries)
   local l, _, _, t = f:view()
-  local out = { f:open(), ('<rect class="background" x="%s" y="%s" width="%s" height="%s" fill="#fff"/>')
-    :format(f:c(l), f:c(-t), f:c(f:px(f.width)), f:c(f:px(f.height))),
+  local bg = BACKGROUND:format(f:c(l), f:c(-t), f:c(f:px(f.width)), f:c(f:px(f.height)))
+  local out = { f:open(), bg,
     '<g class="data" transform="scale(1,-1)">' }
   local labels = axes(f, out, "x", "y")
   local function style(c)
@@ -492,7 +515,8 @@ function M.curves(o)
       c.dash and (' stroke-dasharray="%s"'):format(f:c(f:px(c.dash))) or "")
   end
   for k, c in ipairs(o.curves) do
-    out[#out + 1] = polyline(f, sets[k], c.closed, ('class="%s" %s'):format(c.class or "curve", style(c)))
+    local attrs = ('class="%s" %s'):format(c.class or "curve", style(c))
+    out[#out + 1] = polyline(f, sets[k], c.closed, attrs)
   end
   out[#out + 1] = "</g>"
   labels(out)

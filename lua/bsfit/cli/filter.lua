@@ -76,13 +76,13 @@ local function picture(C, F, o)
   local k = math.max(400, math.min(2000, 20 * C:count()))
   return svg.curves {
     title = ("bsfit filter: %s"):format(o.input),
-    subtitle = ("%s; max deviation %.3g"):format(o.delta and ("delta %g"):format(o.delta) or ("k = %d"):format(o.k),
-                                                C:max_deviation(F)),
+    subtitle = ("%s; max deviation %.3g"):format(
+      o.delta and ("delta %g"):format(o.delta) or ("k = %d"):format(o.k), C:max_deviation(F)),
     curves = {
-      { samples = C:sample(k), closed = C:is_periodic(), class = "before", colour = "#0072b2", width = 4,
-        label = "before" },
-      { samples = F:sample(k), closed = F:is_periodic(), class = "after", colour = "#d55e00", width = 1.5,
-        label = "after (filtered)" } } }
+      { samples = C:sample(k), closed = C:is_periodic(), class = "before", colour = "#0072b2",
+        width = 4, label = "before" },
+      { samples = F:sample(k), closed = F:is_periodic(), class = "after", colour = "#d55e00",
+        width = 1.5, label = "after (filtered)" } } }
 end
 
 function M.main(args)

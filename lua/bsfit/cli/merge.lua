@@ -40,7 +40,8 @@ local function read_summary(dir)
   if not text then error(("%s: no summary.json (%s)"):format(dir, tostring(err)), 0) end
   local s, jerr = report.json_decode(text)
   if type(s) ~= "table" or type(s.sections) ~= "table" then
-    error(("%s/summary.json: not a bsfit summary (%s)"):format(dir, tostring(jerr or "no sections")), 0)
+    local why = tostring(jerr or "no sections")
+    error(("%s/summary.json: not a bsfit summary (%s)"):format(dir, why), 0)
   end
   return s
 end
@@ -104,7 +105,10 @@ function M.main(args)
       return 2
     end
   end
-  if #args < 2 then io.stderr:write("bsfit merge: need OUT and at least one DIR\n", M.usage); return 2 end
+  if #args < 2 then
+    io.stderr:write("bsfit merge: need OUT and at least one DIR\n", M.usage)
+    return 2
+  end
   local out, dirs = args[1], table.move(args, 2, #args, 1, {})
   local ok, err = pcall(function()
     local rows, meta = M.rows(dirs)
@@ -113,7 +117,8 @@ function M.main(args)
       if dir:gsub("/+$", "") ~= out:gsub("/+$", "") then copy_files(dir, out) end
     end
     rc.write_summaries(out, meta, rows)
-    io.stderr:write(("bsfit merge: %d sections from %d directories; outputs in %s\n"):format(#rows, #dirs, out))
+    io.stderr:write(("bsfit merge: %d sections from %d directories; outputs in %s\n")
+                    :format(#rows, #dirs, out))
   end)
   if not ok then
     io.stderr:write("bsfit merge: ", tostring(err), "\n")
