@@ -199,3 +199,14 @@ T.test("overview page: sortable table, failed first, links to the pictures", fun
     T.ok(html:find("<th>" .. h .. "</th>", 1, true), h .. " column")
   end
 end)
+
+T.test("bs.svg (C layers): 3D data say they are an x-y projection, 2D data do not", function()
+  local C3 = bs.curve.new { degree = 1, control_points = { { 0, 0, 0 }, { 1, 1, 5 } } }
+  local d = bs.svg.new(C3)
+  d:curve(C3)
+  T.ok(d:tostring():find("3D data drawn as its x-y projection", 1, true))
+  local P3 = bs.points.new { { 0, 0, 1 }, { 1, 2, 3 } }
+  T.ok(bs.svg.new(P3):points(P3):tostring():find("x-y projection", 1, true), "points too")
+  local C2 = bs.curve.new { degree = 1, control_points = { { 0, 0 }, { 1, 1 } } }
+  T.ok(not bs.svg.new(C2):curve(C2):tostring():find("projection", 1, true), "2D: no note")
+end)
