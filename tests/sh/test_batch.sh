@@ -64,6 +64,10 @@ for j in 1 2; do
   last=$(grep -ob "\[$N/$N\]" "$TMP/tty$j" | tail -1 | cut -d: -f1)
   broken=$(grep -ob 'broken.csv' "$TMP/tty$j" | head -1 | cut -d: -f1)
   check "-j $j: the failure is reported before the last section ends" test "${broken:-999999}" -lt "${last:-0}"
+  if [ "$j" = 1 ]; then # broken.csv is the 3rd input: reported before the 4th section ends
+    fourth=$(grep -ob "\[4/$N\]" "$TMP/tty$j" | head -1 | cut -d: -f1)
+    check "-j 1: the failure is reported as it happens" test "${broken:-999999}" -lt "${fourth:-0}"
+  fi
   check "-j $j: a progress update counts sections/s" grep -q 'sections/s' "$TMP/tty$j"
 done
 script -qec "'$BSFIT' reconstruct '$TMP/in' -o '$TMP/tq' -j 2 -q 2>&1 >/dev/null" /dev/null > "$TMP/ttyq"
