@@ -22,10 +22,11 @@ M.DENSE_POLYGON = 60  -- more control points than this: no polygon unless asked
 M.MAX_POINTS = 5000   -- points drawn at most (the worst fifth of them by residual)
 M.MAX_SAMPLES = 2000  -- curve samples drawn at most
 
-local function at(v, i)
-  if v == nil then return nil end
-  if type(v) == "table" then return v[i] end
-  return v:get(i)
+-- Per-point values (a Lua array or a Vector) as a Lua array, so the loops over the
+-- points index a table (a Vector is copied once by C: Vector:totable).
+local function as_array(v)
+  if v == nil or type(v) == "table" then return v end
+  return v:totable()
 end
 
 -- {======================================================================
@@ -37,7 +38,7 @@ end
 local function weight_cut(w, m, trust)
   if w == nil or not trust or trust <= 0 then return nil end
   local t = {}
-  for i = 1, m do t[i] = at(w, i) end
+  for i = 1, m do t[i] = w[i] end
   table.sort(t)
   local cut = trust * t[m // 2 + 1]
   return t[1] < cut and cut or nil
@@ -47,13 +48,16 @@ end
 -- O(m), no sort of the whole array).
 local function top_threshold(r, m, k)
   local hi = 0
-  for i = 1, m do local v = at(r, i); if v > hi then hi = v end end
+  for i = 1, m do
+    local v = r[i]
+    if v > hi then hi = v end
+  end
   if hi <= 0 then return math.huge end
   local bins, nb = {}, 256
   for b = 0, nb do bins[b] = 0 end
   for i = 1, m do
-    local b = math.floor(at(r, i) / hi * nb)
-    bins[b] = bins[b] + 1
+    local b = (r[i] / hi * nb) // 1
+    if b == b then bins[b] = bins[b] + 1 end -- (a NaN residual is in no bin)
   end
   local seen = 0
   for b = nb, 0, -1 do
@@ -64,7 +68,8 @@ local function top_threshold(r, m, k)
 end
 
 -- Indices of the points to draw: all when m <= cap, else those with the largest
--- residuals (about cap / 5) and an even subsample of the rest up to cap.
+-- residuals (about cap / 5; residuals: a Lua array or nil) and an even subsample of the
+-- rest up to cap.
 function M.thin(m, residuals, cap)
   cap = cap or M.MAX_POINTS
   local idx = {}
@@ -72,10 +77,12 @@ function M.thin(m, residuals, cap)
     for i = 1, m do idx[i] = i end
     return idx
   end
-  local cut = residuals and top_threshold(residuals, m, cap // 5) or math.huge
   local keep = {}
-  for i = 1, m do
-    if at(residuals, i) and at(residuals, i) >= cut then keep[i] = true; idx[#idx + 1] = i end
+  if residuals then
+    local cut = top_threshold(residuals, m, cap // 5)
+    for i = 1, m do
+      if residuals[i] >= cut then keep[i] = true; idx[#idx + 1] = i end
+    end
   end
   local stride = math.ceil(m / (cap - #idx))
   for i = 1, m, stride do
@@ -221,8 +228,8 @@ local function prepare(o)
   local rmax = 0
   if o.residuals then
     for i = 1, #P do
-      local r, w = at(o.residuals, i), at(o.weights, i)
-      if r and r > rmax and not (d.cut and w < d.cut) then rmax = r end
+      local r = o.residuals[i]
+      if r > rmax and not (d.cut and o.weights[i] < d.cut) then rmax = r end
     end
   end
   d.rmax = rmax
@@ -353,12 +360,12 @@ local function draw_points(f, o, d, out)
   out[#out + 1] = '<g class="points">'
   for _, i in ipairs(d.idx) do
     local x, y = d.to2(P:get(i))
-    if d.cut and at(o.weights, i) < d.cut then
+    if d.cut and o.weights[i] < d.cut then
       out[#out + 1] = ('<circle class="down" cx="%s" cy="%s" r="%s" fill="none" stroke="#888" '
                        .. 'stroke-width="%s"/>')
         :format(f:c(x), f:c(y), r, sw)
     else
-      local res = at(o.residuals, i)
+      local res = o.residuals and o.residuals[i]
       local col = res and plot.viridis(d.rmax > 0 and res / d.rmax or 0) or plot.viridis(0.5)
       out[#out + 1] = ('<circle cx="%s" cy="%s" r="%s" fill="%s"/>'):format(f:c(x), f:c(y), r, col)
     end
@@ -391,8 +398,8 @@ local function draw_max(f, o, d, out, texts)
   out[#out + 1] = ('<circle class="max" cx="%s" cy="%s" r="%s" fill="none" stroke="%s" '
                    .. 'stroke-width="%s"/>')
     :format(f:c(x), f:c(y), f:c(f:px(7)), orange, f:c(f:px(2)))
-  local down = d.cut and at(o.weights, o.max_index) < d.cut
-  local value = o.max or at(o.residuals, o.max_index) or 0
+  local down = d.cut and o.weights[o.max_index] < d.cut
+  local value = o.max or (o.residuals and o.residuals[o.max_index]) or 0
   local label = ("max %s at point %d%s"):format(plot.num(value), o.max_index,
                                                 down and " (down-weighted)" or "")
   local w = f:px(plot.text_width(label, fs))
@@ -458,6 +465,10 @@ end
 -- title, subtitle, size (pixels of the plot's longer side, 640), max_points (5000),
 -- max_samples (2000).
 function M.section(o)
+  local copy = {}
+  for k, v in pairs(o) do copy[k] = v end
+  o = copy
+  o.residuals, o.weights = as_array(o.residuals), as_array(o.weights)
   local d = prepare(o)
   local entries = legend_entries(o, d)
   local f = layout(o, d, entries)
@@ -535,16 +546,8 @@ function M.curves(o)
 end
 
 -- The overview page (bsfit.overview).
-function M.index(title, items, opts)
-  return require("bsfit.overview").page(title, items, opts)
+function M.index(title, items)
+  return require("bsfit.overview").page(title, items)
 end
-
-M.polyline = polyline
-M.axes = axes
-M.scale_bar = scale_bar
-M.thin_samples = thin_samples
-M.control2 = control2
-M.data_box = data_box
-M.projection = proj
 
 return M
