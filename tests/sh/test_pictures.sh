@@ -104,6 +104,19 @@ sys.exit(0 if links == svgs and "<table>" in html and "<script>" in html else 1)
 EOF
 check "index.html: a table linking every picture, sort script inline" test $? -eq 0
 
+# --polygon: auto draws it up to 60 control points, on and off force it
+cam_cp=$(awk -F, '$1 == "cam" {print $4}' "$TMP/out/summary.csv")
+br_cp=$(awk -F, '$1 == "bracket" {print $4}' "$TMP/out/summary.csv")
+has_polygon() { grep -q 'class="control"' "$1"; }
+if [ "$cam_cp" -gt 60 ]; then check "auto: no polygon on cam ($cam_cp control points)" bash -c "! grep -q 'class=\"control\"' '$TMP/out/cam.svg'"
+else check "auto: polygon on cam ($cam_cp control points)" has_polygon "$TMP/out/cam.svg"; fi
+"$BSFIT" reconstruct "$TMP/in/cam.csv" "$TMP/in/bracket.csv" -o "$TMP/on" --polygon on -q
+check "--polygon on: drawn on cam" has_polygon "$TMP/on/cam.svg"
+"$BSFIT" reconstruct "$TMP/in/cam.csv" "$TMP/in/bracket.csv" -o "$TMP/off" --polygon off -q
+check "--polygon off: not drawn on bracket ($br_cp control points)" bash -c "! grep -q 'class=\"control\"' '$TMP/off/bracket.svg'"
+"$BSFIT" reconstruct "$TMP/in/cam.csv" -o "$TMP/bad" --polygon maybe -q 2> /dev/null
+check "--polygon maybe: usage error" test $? -eq 2
+
 # bsfit filter: the before and after curves are both stroked, with a legend
 "$BSFIT" filter "$TMP/out/cam.json" -k 3 -o "$TMP/cam_f.json" > /dev/null
 check "filter: exit 0" test $? -eq 0

@@ -94,7 +94,7 @@ local flags = {
   ["--polygon"] = function(o, v)
     local modes = { auto = "auto", on = true, off = false }
     if modes[v] == nil then error("--polygon must be auto, on or off, got '" .. v .. "'", 0) end
-    o.polygon = modes[v] ~= "auto" and modes[v] or nil
+    if modes[v] == "auto" then o.polygon = nil else o.polygon = modes[v] end
   end,
 }
 local switches = {
