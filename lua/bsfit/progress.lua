@@ -7,7 +7,7 @@
 --   local progress = require "bsfit.progress"
 --   local p = progress.new{total = 40, live = true, out = io.stderr,
 --                          prefix = "bsfit reconstruct: "}
---   p:ended(ok, failure_line)   -- once per section, as it ends
+--   p:ended(ok, line)           -- once per section, as it ends (line: failure, warnings)
 --   p:finish()                  -- clears the line
 
 local M = {}
@@ -50,13 +50,14 @@ function P:clear()
   if self.shown then self.out:write("\r\027[K"); self.shown = false end
 end
 
--- One section ended; failure: the line that reports it (nil when it succeeded).
-function P:ended(ok, failure)
+-- One section ended (ok: it succeeded); line: what to say about it on its own line
+-- (its failure, its warnings), or nil.
+function P:ended(ok, line)
   self.done = self.done + 1
-  if not ok then
-    self.failed = self.failed + 1
+  if not ok then self.failed = self.failed + 1 end
+  if line then
     self:clear()
-    self.out:write(self.prefix, failure, "\n")
+    self.out:write(self.prefix, line, "\n")
     self.out:flush()
   end
   if self.live then self:draw() end

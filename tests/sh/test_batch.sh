@@ -56,6 +56,23 @@ check "internal error: one line, says so, no position" \
 "$BSFIT" reconstruct "$TMP/in/cam.csv" --strategy "$TMP/buggy.lua" -o "$TMP/ob" --debug 2> "$TMP/ebd"
 check "--debug: the traceback and the position" bash -c "grep -q 'stack traceback' '$TMP/ebd' && grep -q 'buggy.lua:1:' '$TMP/ebd'"
 
+# -- a strategy's warnings: one line each as the section ends, the summary, the final count
+cat > "$TMP/warns.lua" << 'EOF2'
+local auto = require "bsfit.strategy.auto"
+return { run = function(P, o)
+  local C, rep = auto.run(P, o)
+  if C and #P > 150 then rep.warnings = { "tol 0.001 not met", "second" } end
+  return C, rep
+end }
+EOF2
+"$BSFIT" reconstruct "$TMP/in/cam.csv" "$TMP/in/bracket.csv" "$TMP/in/noisy_blob.csv" -j 2 \
+  --strategy "$TMP/warns.lua" -o "$TMP/ow" 2> "$TMP/ew"
+check "warnings: one line per section that has them" \
+  test "$(grep -c ': warning: tol 0.001 not met; second$' "$TMP/ew")" -eq 2
+check "warnings: in the summary" test "$(grep -c ',tol 0.001 not met; second,' "$TMP/ow/summary.csv")" -eq 2
+check "warnings: counted in the final line" grep -q '3 sections: 3 ok, 0 failed, 2 with warnings' "$TMP/ew"
+check "warnings: on the overview page" grep -q '2 with warnings' "$TMP/ow/index.html"
+
 # -- on a terminal: progress for any -j
 for j in 1 2; do
   script -qec "'$BSFIT' reconstruct '$TMP/in' -o '$TMP/t$j' -j $j 2>&1 >/dev/null" /dev/null > "$TMP/tty$j"

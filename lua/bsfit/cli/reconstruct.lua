@@ -369,6 +369,15 @@ function M.failure_line(row)
   return path .. ": " .. msg
 end
 
+-- What a section's end says on stderr: the failure line, "PATH: warning: ..." for a
+-- section with warnings, nil otherwise.
+function M.report_line(row)
+  if row.status ~= "ok" then return M.failure_line(row) end
+  if row.warnings and row.warnings ~= "" then
+    return ("%s: warning: %s"):format(tostring(row.input), row.warnings)
+  end
+end
+
 -- The worker entry of -j: a serialized spec in, a serialized row out.
 function M.section_serialized(s)
   return report.serialize(M.section(report.deserialize(s)))
@@ -381,7 +390,7 @@ end
 -- =======================================================================
 
 local summary_columns = { "name", "input", "points", "control_points", "rms", "max", "max_index",
-                          "max_trusted", "start_index", "status", "error", "index", "warnings" }
+                          "max_trusted", "start_index", "status", "error", "warnings", "index" }
 M.summary_columns = summary_columns
 
 local function specs_of(o, inputs)
@@ -400,7 +409,7 @@ local function run_serial(specs, prog)
   local rows = {}
   for i, s in ipairs(specs) do
     rows[i] = M.section(s)
-    prog:ended(rows[i].status == "ok", M.failure_line(rows[i]))
+    prog:ended(rows[i].status == "ok", M.report_line(rows[i]))
   end
   return rows
 end
@@ -419,7 +428,7 @@ local function run_parallel(specs, n, prog, debug_on)
   for i, s in ipairs(specs) do items[i] = report.serialize(s) end
   local function done(i, ok, out)
     rows[i] = ok and report.deserialize(out) or worker_failed(specs[i], out, debug_on)
-    prog:ended(rows[i].status == "ok", M.failure_line(rows[i]))
+    prog:ended(rows[i].status == "ok", M.report_line(rows[i]))
   end
   bs.parallel.map("bsfit.cli.reconstruct", "section_serialized", items, { threads = n, done = done })
   for i, s in ipairs(specs) do rows[i] = rows[i] or worker_failed(s, nil, debug_on) end
