@@ -149,3 +149,39 @@ T.test("section: --open and a strategy FILE.lua", function()
   T.ok(slurp(d .. "/b.json"):find('"periodic": *false'), "an open curve")
   os.execute("rm -rf '" .. d .. "'")
 end)
+
+T.test("shard: the shards of any list partition it, balanced, indices kept", function()
+  for n = 0, 30 do
+    for N = 1, 7 do
+      local seen, sizes = {}, {}
+      for I = 0, N - 1 do
+        local list = {}
+        for k = 1, n do list[k] = { path = "p" .. k, name = "s" .. k } end
+        local part = rc.shard(list, { index = I, count = N })
+        sizes[#sizes + 1] = #part
+        for _, inp in ipairs(part) do
+          T.ok(not seen[inp.name], "in one shard only")
+          seen[inp.name] = true
+          T.eq(inp.name, "s" .. inp.index, "index = position in the whole list")
+        end
+      end
+      local count = 0
+      for _ in pairs(seen) do count = count + 1 end
+      T.eq(count, n, "every input in some shard")
+      T.ok(math.max(table.unpack(sizes)) - math.min(table.unpack(sizes)) <= 1, "balanced")
+    end
+  end
+end)
+
+T.test("user_message: Lua positions and argument wrappers off, paths and debug kept", function()
+  T.eq(rc.user_message("/x/y/auto.lua:498: bad argument #1 to 'breaks' (5 points leave few spans)",
+                       "a.csv"), "5 points leave few spans")
+  T.eq(rc.user_message("a.csv:4: not a number: 'abc'", "a.csv"), "a.csv:4: not a number: 'abc'")
+  T.ok(rc.user_message("mine.lua:1: attempt to index a nil value (local 't')", "a.csv")
+       :find("^internal error %(attempt to index a nil value"), "a bug says it is one")
+  T.eq(rc.user_message("boom\nstack traceback:\n\tx.lua:1", "a.csv"), "boom")
+  local full = "mine.lua:1: boom\nstack traceback:\n\tmine.lua:1: in main chunk"
+  T.eq(rc.user_message(full, "a.csv", true), full, "--debug keeps everything")
+  T.eq(rc.failure_line { input = "a.csv", error = "a.csv:4: bad" }, "a.csv:4: bad", "path once")
+  T.eq(rc.failure_line { input = "a.csv", error = "too few" }, "a.csv: too few")
+end)
