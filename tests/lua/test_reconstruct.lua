@@ -185,3 +185,38 @@ T.test("user_message: Lua positions and argument wrappers off, paths and debug k
   T.eq(rc.failure_line { input = "a.csv", error = "a.csv:4: bad" }, "a.csv:4: bad", "path once")
   T.eq(rc.failure_line { input = "a.csv", error = "too few" }, "a.csv: too few")
 end)
+
+T.test("report.json_decode: reads what report.json writes, and standard JSON", function()
+  local s = 12345
+  local function rnd() s = (s * 1103515245 + 12345) % 2147483648; return s / 2147483648 end
+  local function value(depth)
+    local k = math.floor(rnd() * (depth > 3 and 4 or 6))
+    if k == 0 then return (rnd() - 0.5) * 10 ^ math.floor(rnd() * 40 - 20) end
+    if k == 1 then return math.floor(rnd() * 1e6) end
+    if k == 2 then
+      local t = {}
+      for i = 1, math.floor(rnd() * 8) do t[i] = string.char(math.floor(rnd() * 255) + 1) end
+      return table.concat(t)
+    end
+    if k == 3 then return rnd() < 0.5 end
+    local t = {}
+    for i = 1, math.floor(rnd() * 5) do
+      if k == 4 then t[i] = value(depth + 1) else t["k" .. i] = value(depth + 1) end
+    end
+    return t
+  end
+  for _ = 1, 300 do
+    local text = report.json(value(0))
+    local v, err = report.json_decode(text)
+    T.ok(err == nil, err)
+    T.eq(report.json(v), text, "round trip")
+  end
+  local v = report.json_decode(' { "a" : [1, -0.5, 2.5e-3, 1E2, true, false, null],\n "b": "\\u00e9\\n\\/" } ')
+  T.eq(v.a[1], 1); T.eq(v.a[2], -0.5); T.eq(v.a[3], 2.5e-3); T.eq(v.a[4], 100.0)
+  T.eq(v.a[5], true); T.eq(v.a[6], false); T.eq(v.a[7], report.null); T.eq(#v.a, 7)
+  T.eq(v.b, "é\n/")
+  for _, bad in ipairs { "", "{", "[1,]", '{"a" 1}', '"abc', "nul", "[1] x", '{"a":1,}' } do
+    local r, msg = report.json_decode(bad)
+    T.ok(r == nil and msg:find("^JSON: .* at byte %d+$"), ("'%s' refused: %s"):format(bad, tostring(msg)))
+  end
+end)

@@ -103,6 +103,9 @@ names() { tail -n +2 "$1/summary.csv" | cut -d, -f1 | sort; }
 check "the shards partition the inputs" \
   bash -c "test \"\$(cat <(tail -n +2 '$TMP/shard0/summary.csv') <(tail -n +2 '$TMP/shard1/summary.csv') | cut -d, -f1 | sort)\" = \"\$(tail -n +2 '$TMP/single/summary.csv' | cut -d, -f1 | sort)\" && test -z \"\$(comm -12 <(tail -n +2 '$TMP/shard0/summary.csv' | cut -d, -f1 | sort) <(tail -n +2 '$TMP/shard1/summary.csv' | cut -d, -f1 | sort))\""
 check "shards are balanced" test $(( $(names "$TMP/shard0" | wc -l) - $(names "$TMP/shard1" | wc -l) )) -le 1
+cp -r "$TMP/shard0" "$TMP/into0"
+"$BSFIT" merge "$TMP/into0" "$TMP/into0" "$TMP/shard1" 2> /dev/null
+check "merge into one of the shards: the same result" diff -r -x timing.csv "$TMP/single" "$TMP/into0"
 "$BSFIT" reconstruct "$TMP/in" -o "$TMP/x" --shard 2/2 2> /dev/null; check "--shard 2/2: usage error" test $? -eq 2
 "$BSFIT" reconstruct "$TMP/in" -o "$TMP/x" --shard 1 2> /dev/null; check "--shard 1: usage error" test $? -eq 2
 "$BSFIT" merge "$TMP/m2" "$TMP/shard0" "$TMP/shard0" 2> "$TMP/ed"
