@@ -112,6 +112,12 @@ check "merge into one of the shards: the same result" diff -r -x timing.csv "$TM
 check "merge of the same shard twice: refused, says which section" \
   bash -c "test $? -eq 1 && grep -q 'is in both' '$TMP/ed'"
 "$BSFIT" merge "$TMP/m3" "$TMP/nonexistent" 2> /dev/null; check "merge of a missing directory: exit 1" test $? -eq 1
+"$BSFIT" merge "$TMP/m4" "$TMP/shard1" 2> "$TMP/e4"
+check "merge without shard 0: refused, names the missing shard" \
+  bash -c "test $? -eq 1 && grep -q 'shard 0/2 is missing' '$TMP/e4'"
+"$BSFIT" reconstruct "$TMP/in" -o "$TMP/s3_0" -q --shard 0/3 2> /dev/null
+"$BSFIT" merge "$TMP/m5" "$TMP/s3_0" "$TMP/shard1" 2> "$TMP/e5"
+check "merge of shards of different jobs: refused" bash -c "test $? -eq 1 && grep -q 'not one job' '$TMP/e5'"
 "$BSFIT" merge 2> /dev/null; check "merge without arguments: exit 2" test $? -eq 2
 
 echo "$pass passed, $fail failed"

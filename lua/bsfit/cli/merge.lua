@@ -68,17 +68,54 @@ local function copy_files(dir, out)
   p:close()
 end
 
+-- Raises unless the shards' summaries (array of {dir, shard}) are shards of one job,
+-- and, given their rows, every shard once and the whole input list (1..total).
+local function check_shards(shards, rows)
+  local count, total, have = shards[1].shard.count, shards[1].shard.total, {}
+  for _, s in ipairs(shards) do
+    local sh = s.shard
+    if sh.count ~= count or sh.total ~= total then
+      error(("%s is shard %d/%d of %d inputs; %s of %d/%d of %d inputs: not one job")
+        :format(s.dir, sh.index, sh.count, sh.total, shards[1].dir, shards[1].shard.index, count,
+                total), 0)
+    end
+    if have[sh.index] and have[sh.index] ~= s.dir then
+      error(("shard %d/%d is in both %s and %s"):format(sh.index, count, have[sh.index], s.dir), 0)
+    end
+    have[sh.index] = s.dir
+  end
+  if rows == nil then return end
+  for i = 0, count - 1 do
+    if not have[i] then
+      error(("shard %d/%d is missing (no directory holds it)"):format(i, count), 0)
+    end
+  end
+  if #rows ~= total then
+    error(("%d sections in the shards, %d inputs in the job"):format(#rows, total), 0)
+  end
+end
+
 -- The rows of every directory, in input order; raises when they do not fit together.
 function M.rows(dirs)
-  local rows, by_name, meta = {}, {}, nil
-  for _, dir in ipairs(dirs) do
-    local s = read_summary(dir)
-    meta = meta or { strategy = s.strategy, degree = s.degree, dir = dir }
+  local sums, shards = {}, {}
+  for k, dir in ipairs(dirs) do
+    sums[k] = read_summary(dir)
+    if type(sums[k].shard) == "table" then
+      shards[#shards + 1] = { dir = dir, shard = sums[k].shard }
+    end
+  end
+  if #shards > 0 and #shards < #dirs then
+    error("some directories are shards, others are not", 0)
+  end
+  local rows, by_name, meta = {}, {}, { strategy = sums[1].strategy, degree = sums[1].degree }
+  for k, dir in ipairs(dirs) do
+    local s = sums[k]
     if s.strategy ~= meta.strategy or s.degree ~= meta.degree then
       error(("%s was made with strategy %s, degree %s; %s with strategy %s, degree %s")
-        :format(dir, tostring(s.strategy), tostring(s.degree), meta.dir, tostring(meta.strategy),
+        :format(dir, tostring(s.strategy), tostring(s.degree), dirs[1], tostring(meta.strategy),
                 tostring(meta.degree)), 0)
     end
+    if #shards > 0 then check_shards({ shards[1], shards[k] }, nil) end
     local timing = read_timing(dir)
     for _, r in ipairs(s.sections) do
       if by_name[r.name] then
@@ -89,6 +126,7 @@ function M.rows(dirs)
       rows[#rows + 1] = r
     end
   end
+  if #shards > 0 then check_shards(shards, rows) end
   table.sort(rows, function(a, b)
     local ia, ib = tonumber(a.index) or math.huge, tonumber(b.index) or math.huge
     if ia ~= ib then return ia < ib end

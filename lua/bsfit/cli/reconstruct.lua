@@ -430,7 +430,8 @@ local function run_parallel(specs, n, prog, debug_on)
     rows[i] = ok and report.deserialize(out) or worker_failed(specs[i], out, debug_on)
     prog:ended(rows[i].status == "ok", M.report_line(rows[i]))
   end
-  bs.parallel.map("bsfit.cli.reconstruct", "section_serialized", items, { threads = n, done = done })
+  bs.parallel.map("bsfit.cli.reconstruct", "section_serialized", items,
+                  { threads = n, done = done })
   for i, s in ipairs(specs) do rows[i] = rows[i] or worker_failed(s, nil, debug_on) end
   return rows
 end
@@ -447,8 +448,9 @@ local function exists(path)
 end
 
 -- Writes summary.csv, summary.json, timing.csv and index.html of the rows (in input
--- order) into outdir. meta: strategy, degree. Shared with `bsfit merge`, so a merged
--- set of shards gives the same files as one run.
+-- order) into outdir. meta: strategy, degree, and shard ({index, count, total}: a
+-- shard's summary.json says which one it is, so `bsfit merge` can tell a missing one).
+-- Shared with `bsfit merge`, so a merged set of shards gives the same files as one run.
 function M.write_summaries(outdir, meta, rows)
   report.must_write(outdir .. "/summary.csv", report.csv(summary_columns, rows))
   local clean = {}
@@ -458,15 +460,15 @@ function M.write_summaries(outdir, meta, rows)
     clean[i] = c
   end
   report.must_write(outdir .. "/summary.json", report.json {
-    strategy = meta.strategy, degree = meta.degree, sections = clean } .. "\n")
+    strategy = meta.strategy, degree = meta.degree, sections = clean, shard = meta.shard } .. "\n")
   local timing = {}
   for i, r in ipairs(rows) do timing[i] = { name = r.name, ms = ("%.3f"):format(r.ms or 0) } end
   report.must_write(outdir .. "/timing.csv", report.csv({ "name", "ms" }, timing))
   local items = {}
   for i, r in ipairs(rows) do
     local pic = r.name .. ".svg"
-    items[i] = setmetatable({ svg = r.status == "ok" and exists(outdir .. "/" .. pic) and pic or nil },
-                            { __index = r })
+    local drawn = r.status == "ok" and exists(outdir .. "/" .. pic)
+    items[i] = setmetatable({ svg = drawn and pic or nil }, { __index = r })
   end
   report.must_write(outdir .. "/index.html", svg.index("bsfit reconstruct", items))
 end
@@ -491,7 +493,9 @@ local function run(o, specs)
   if o.jobs > 1 and #specs > 1 and bs.parallel then
     rows = run_parallel(specs, o.jobs, prog, o.debug)
   else
-    if o.jobs > 1 and not bs.parallel then warn("-j: this build has no bsfit.parallel; running serially") end
+    if o.jobs > 1 and not bs.parallel then
+      warn("-j: this build has no bsfit.parallel; running serially")
+    end
     rows = run_serial(specs, prog)
   end
   prog:finish()
@@ -522,7 +526,9 @@ function M.main(args)
   if o.help then io.stdout:write(M.usage); return 0 end
   local okl, lerr = pcall(load_strategy, o.strategy)
   if not okl then warn("%s", tostring(lerr)); return 2 end
-  local inputs = M.shard(M.inputs(o.inputs), o.shard)
+  local all = M.inputs(o.inputs)
+  local inputs = M.shard(all, o.shard)
+  if o.shard then o.shard.total = #all end
   if #inputs == 0 and not o.shard then warn("no input sections"); return 2 end
   os.execute("mkdir -p " .. shell_quote(o.outdir))
   if not is_dir(o.outdir) then warn("cannot create output directory %s", o.outdir); return 2 end
