@@ -149,7 +149,9 @@ BSFIT_API bsfit_err bsfit_surface_write_json(const bsfit_surface *s, const char 
 ** Data coordinates map to pixels with the y axis pointing up; the viewBox is the data
 ** bounding box plus a 5% margin. Default styles exist for the classes "points",
 ** "curve", "control" (dashed) and "marker"; any other class name made of letters,
-** digits, '-' and '_' may be used and styled by the reader.
+** digits, '-' and '_' may be used and styled by the reader. A document with 3D layers
+** says so in a note ("3D data drawn as its x-y projection"); the section pictures of
+** bsfit reconstruct draw 3D sections in their best-fit plane instead (docs/pictures.md).
 ** ===================================================================== */
 
 /** An SVG document under construction (opaque). */

@@ -72,7 +72,7 @@ end
 -- Object keys are sorted, so equal tables give equal text.
 function M.json(v)
   local t = type(v)
-  if t == "nil" then return "null" end
+  if t == "nil" or v == M.null then return "null" end
   if t == "boolean" then return tostring(v) end
   if t == "number" then return M.num(v) end
   if t == "string" then return M.json_string(v) end
@@ -93,6 +93,89 @@ function M.json(v)
   return "{" .. table.concat(parts, ",") .. "}"
 end
 
+-- The value of a JSON text (objects as tables, arrays as sequences, null as nil),
+-- for reading back what M.json wrote (bsfit merge). Returns the value, or nil and a
+-- message with the byte offset.
+function M.json_decode(s)
+  local pos = 1
+  local function fail(what) error(("JSON: %s at byte %d"):format(what, pos), 0) end
+  local function ws() pos = s:find("[^ \t\r\n]", pos) or #s + 1 end
+  local value
+  local function str()
+    local out = {}
+    pos = pos + 1
+    while true do
+      local a, b = s:find('["\\]', pos)
+      if not a then fail("unterminated string") end
+      out[#out + 1] = s:sub(pos, a - 1)
+      if s:sub(a, a) == '"' then pos = b + 1; break end
+      local c = s:sub(a + 1, a + 1)
+      local simple = { b = "\b", f = "\f", n = "\n", r = "\r", t = "\t", ['"'] = '"',
+                       ["\\"] = "\\", ["/"] = "/" }
+      if simple[c] then out[#out + 1] = simple[c]; pos = a + 2
+      elseif c == "u" then
+        local hex = s:match("^%x%x%x%x", a + 2) or fail("bad \\u escape")
+        out[#out + 1] = utf8.char(tonumber(hex, 16)); pos = a + 6
+      else fail("bad escape") end
+    end
+    return table.concat(out)
+  end
+  local function container(close, item)
+    pos = pos + 1
+    ws()
+    if s:sub(pos, pos) == close then pos = pos + 1; return end
+    while true do
+      item()
+      ws()
+      local c = s:sub(pos, pos)
+      pos = pos + 1
+      if c == close then return end
+      if c ~= "," then fail("expected ',' or '" .. close .. "'") end
+    end
+  end
+  function value()
+    ws()
+    local c = s:sub(pos, pos)
+    if c == "{" then
+      local t = {}
+      container("}", function()
+        ws()
+        if s:sub(pos, pos) ~= '"' then fail("expected a key") end
+        local k = str()
+        ws()
+        if s:sub(pos, pos) ~= ":" then fail("expected ':'") end
+        pos = pos + 1
+        t[k] = value()
+      end)
+      return t
+    elseif c == "[" then
+      local t = {}
+      container("]", function() t[#t + 1] = value() end)
+      return t
+    elseif c == '"' then return str()
+    end
+    for word, v in pairs { ["true"] = true, ["false"] = false, null = M.null } do
+      if s:sub(pos, pos + #word - 1) == word then pos = pos + #word; return v end
+    end
+    local num = s:match("^-?%d+%.?%d*[eE]?[-+]?%d*", pos)
+    if not num or num == "" or not tonumber(num) then fail("unexpected character") end
+    pos = pos + #num
+    return tonumber(num)
+  end
+  local ok, v = pcall(function()
+    local r = value()
+    ws()
+    if pos <= #s then fail("trailing text") end
+    return r
+  end)
+  if not ok then return nil, v end
+  return v
+end
+
+-- JSON's null as json_decode returns it inside arrays and objects: a value that is
+-- not nil, so that arrays keep their length; M.unnull turns it into nil.
+M.null = setmetatable({}, { __tostring = function() return "null" end })
+
 -- }======================================================================
 
 -- {======================================================================
@@ -101,6 +184,7 @@ end
 
 -- One CSV field: quoted when it holds a comma, quote or line break.
 function M.csv_field(v)
+  if v == M.null then return "" end
   if type(v) == "number" then return M.num(v) == "null" and "" or M.num(v) end
   v = tostring(v == nil and "" or v)
   if v:find('[,"\r\n]') then return '"' .. v:gsub('"', '""') .. '"' end

@@ -16,6 +16,7 @@ struct bsfit_svg {
   double scale;         /* pixels per data unit (same in x and y) */
   double width, height; /* pixels */
   int ended;
+  int projected;        /* some layer had 3D data: drawn as its x-y projection, said so */
 };
 
 #define MARGIN 0.05 /* of the larger side, on each side */
@@ -157,6 +158,7 @@ bsfit_err bsfit_svg_points(bsfit_svg *s, const double *xy, size_t m, int dim, do
   if (e == BSFIT_OK) e = check_points(xy, m, dim, st);
   if (e != BSFIT_OK) return e;
   if (!(radius > 0) || !isfinite(radius)) radius = 2.0;
+  if (dim >= 3) s->projected = 1;
   bsfit__buf_printf(&s->b, "<g class=\"%s\">\n", css_class);
   for (i = 0; i < m; i++)
     bsfit__buf_printf(&s->b, "<circle cx=\"%.3f\" cy=\"%.3f\" r=\"%.3g\"/>\n", px(s, xy[i * d]),
@@ -171,6 +173,7 @@ bsfit_err bsfit_svg_polyline(bsfit_svg *s, const double *xy, size_t m, int dim, 
   bsfit_err e = check_layer(s, &css_class, "curve", st);
   if (e == BSFIT_OK) e = check_points(xy, m, dim, st);
   if (e != BSFIT_OK) return e;
+  if (dim >= 3) s->projected = 1;
   bsfit__buf_printf(&s->b, "<%s class=\"%s\" fill=\"none\" points=\"", closed ? "polygon" : "polyline",
                     css_class);
   for (i = 0; i < m; i++)
@@ -256,6 +259,10 @@ bsfit_err bsfit_svg_end(bsfit_svg *s, char **out, size_t *len, bsfit_status *st)
   if (s == NULL || out == NULL) return bsfit__fail(st, BSFIT_EINVAL, "no SVG document");
   if (s->ended) return bsfit__fail(st, BSFIT_EINVAL, "the SVG document is already ended");
   s->ended = 1;
+  /* a 3D layer is not silently a 2D picture: the picture says what it shows */
+  if (s->projected)
+    bsfit__buf_puts(&s->b, "<text class=\"note\" x=\"4\" y=\"14\">3D data drawn as its x-y "
+                           "projection (z not shown)</text>\n");
   bsfit__buf_puts(&s->b, "</svg>\n");
   e = bsfit__buf_take(&s->b, out, len, st);
   return e;

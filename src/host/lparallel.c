@@ -14,6 +14,9 @@
 ** Workers see the caller's package.path/cpath. A sandboxed caller
 ** (bsfit_lua_sandboxed) may not call it: its workers would run outside the
 ** caller's instruction budget, memory cap and interrupt.
+** The fourth argument may be a table {threads = n, done = f}: f(i, ok, result_or_error)
+** is then called on the calling thread as each item ends (in the order they end), for
+** progress reports; an error in f is raised once the job is over.
 **
 **   bs.parallel.clock() --> seconds (monotonic wall clock, for timing)
 **   bs.parallel.cpus()  --> number of online processors
@@ -73,10 +76,85 @@ static const char *package_field(lua_State *L, const char *k) {
   return s;
 }
 
+/* The fourth argument: a number of threads, or a table {threads = n, done = f}. */
+static lua_Integer threads_arg(lua_State *L, int arg) {
+  lua_Integer n;
+  if (lua_type(L, arg) != LUA_TTABLE) return luaL_optinteger(L, arg, 1);
+  lua_getfield(L, arg, "threads");
+  n = lua_isnil(L, -1) ? 1 : lua_tointeger(L, -1);
+  if (!lua_isnil(L, -1) && !lua_isinteger(L, -1))
+    return luaL_argerror(L, arg, "field 'threads' must be an integer");
+  lua_getfield(L, arg, "done");
+  if (!lua_isnil(L, -1) && !lua_isfunction(L, -1))
+    return luaL_argerror(L, arg, "field 'done' must be a function");
+  lua_pop(L, 2);
+  return n;
+}
+
+/* What a done call needs; failed once the Lua function raised (its error at slot 6). */
+typedef struct done_ctx {
+  lua_State *L;
+  const bsfit_pmap *job;
+  size_t i;
+  int failed;
+} done_ctx;
+
+/* Protected: f(i, ok, result or error); arguments f and the done_ctx. */
+static int done_call(lua_State *L) {
+  const done_ctx *c = (const done_ctx *)lua_touserdata(L, 2);
+  const bsfit_pmap_item *it = &c->job->items[c->i];
+  lua_pushvalue(L, 1);
+  lua_pushinteger(L, (lua_Integer)c->i + 1);
+  lua_pushboolean(L, it->ok);
+  if (it->out != NULL) lua_pushlstring(L, it->out, it->outlen);
+  else lua_pushliteral(L, "not enough memory for the result");
+  lua_call(L, 3, 0);
+  return 0;
+}
+
+/* The pool's done callback: nothing that can raise outside the protected call. */
+static void on_done(void *ud, size_t i) {
+  done_ctx *c = (done_ctx *)ud;
+  if (c->failed) return;
+  c->i = i;
+  lua_pushcfunction(c->L, done_call);
+  lua_pushvalue(c->L, 7); /* the done function */
+  lua_pushlightuserdata(c->L, c);
+  if (lua_pcall(c->L, 2, 0, 0) != LUA_OK) {
+    c->failed = 1;
+    lua_replace(c->L, 6); /* the error, raised after the run */
+  }
+}
+
+/* Runs the job (slot 5), with the done function of the table at slot 4 if any. */
+static void run_job(lua_State *L, bsfit_pmap *job, int nt) {
+  done_ctx c;
+  if (lua_type(L, 4) != LUA_TTABLE || lua_getfield(L, 4, "done") != LUA_TFUNCTION) {
+    lua_settop(L, 5);
+    bsfit__pmap_run(job, nt);
+    return;
+  }
+  lua_pushnil(L);      /* slot 7: the done function; slot 6: its error, if it raises */
+  lua_insert(L, 6);
+  luaL_checkstack(L, 8, "no stack space for the done function");
+  c.L = L;
+  c.job = job;
+  c.failed = 0;
+  job->done = on_done;
+  job->done_ud = &c;
+  bsfit__pmap_run(job, nt);
+  job->done = NULL;
+  if (c.failed) {
+    lua_settop(L, 6);
+    lua_error(L);
+  }
+  lua_settop(L, 5);
+}
+
 static int parallel_map(lua_State *L) {
   const char *module = luaL_checkstring(L, 1);
   const char *fn = luaL_checkstring(L, 2);
-  lua_Integer nt = luaL_optinteger(L, 4, 1), len;
+  lua_Integer nt = threads_arg(L, 4), len;
   const char *path, *cpath;
   size_t n, i;
   bsfit_pmap *job;
@@ -108,7 +186,7 @@ static int parallel_map(lua_State *L) {
     job->items[i].in = lua_tolstring(L, -1, &job->items[i].inlen);
     lua_pop(L, 1);
   }
-  bsfit__pmap_run(job, (int)nt);
+  run_job(L, job, (int)nt);
   lua_createtable(L, (int)(n < INT_MAX ? n : 0), 0); /* results, slot 6 */
   lua_newtable(L);                                    /* errors, slot 7 */
   for (i = 0; i < n; i++) {

@@ -79,6 +79,15 @@ static int pcall_with(bsfit_engine *e, lua_CFunction f, void *p) {
   return bsfit_engine_pcall(e, 1, 1) == BSFIT_OK;
 }
 
+/* Records that item i ended, for the calling thread's done calls. */
+static void ended(bsfit_pmap *job, size_t i) {
+  if (job->ended == NULL) return;
+  pthread_mutex_lock(&job->mu);
+  job->ended[job->nended++] = i;
+  pthread_cond_signal(&job->cv);
+  pthread_mutex_unlock(&job->mu);
+}
+
 /* Takes items until none is left; each gets its result or its error. */
 static void work(bsfit_pmap *job, bsfit_engine *e, const char *setup_error) {
   for (;;) {
@@ -98,6 +107,7 @@ static void work(bsfit_pmap *job, bsfit_engine *e, const char *setup_error) {
       const char *msg = bsfit_engine_errmsg(e);
       set_out(it, msg, strlen(msg), 0);
     }
+    ended(job, i);
   }
 }
 
@@ -128,6 +138,56 @@ static void *worker(void *arg) {
 
 #define MAX_WORKERS 256
 
+/* The calling thread's side of a job with a done callback: calls done for every item
+** as it ends, until all have. */
+static void report_done(bsfit_pmap *job) {
+  size_t seen = 0;
+  pthread_mutex_lock(&job->mu);
+  while (seen < job->n) {
+    size_t upto;
+    while (job->nended == seen) pthread_cond_wait(&job->cv, &job->mu);
+    upto = job->nended;
+    pthread_mutex_unlock(&job->mu); /* done may take its time: workers go on */
+    for (; seen < upto; seen++) job->done(job->done_ud, job->ended[seen]);
+    pthread_mutex_lock(&job->mu);
+  }
+  pthread_mutex_unlock(&job->mu);
+}
+
+/* A job with a done callback: nthreads workers, the calling thread reports. When no
+** thread starts (or no memory for the list), the calling thread works alone and reports
+** each item as it ends. */
+static int run_reporting(bsfit_pmap *job, int nthreads, pthread_t *th) {
+  int started = 0, k;
+  job->nended = 0;
+  job->ended = (size_t *)malloc(job->n * sizeof *job->ended);
+  if (job->ended != NULL && pthread_mutex_init(&job->mu, NULL) != 0) {
+    free(job->ended);
+    job->ended = NULL;
+  }
+  if (job->ended != NULL && pthread_cond_init(&job->cv, NULL) != 0) {
+    pthread_mutex_destroy(&job->mu);
+    free(job->ended);
+    job->ended = NULL;
+  }
+  if (job->ended != NULL)
+    for (k = 0; k < nthreads; k++)
+      if (pthread_create(&th[started], NULL, worker, job) == 0) started++;
+  if (started == 0) worker(job); /* alone: every item ends on this thread */
+  if (job->ended != NULL) {
+    report_done(job);
+    for (k = 0; k < started; k++) pthread_join(th[k], NULL);
+    pthread_cond_destroy(&job->cv);
+    pthread_mutex_destroy(&job->mu);
+    free(job->ended);
+    job->ended = NULL;
+  } else {
+    size_t i;
+    for (i = 0; i < job->n; i++) job->done(job->done_ud, i);
+  }
+  return started > 0 ? started : 1;
+}
+
 int bsfit__pmap_run(bsfit_pmap *job, int nthreads) {
   pthread_t th[MAX_WORKERS];
   int started = 0, k;
@@ -135,6 +195,8 @@ int bsfit__pmap_run(bsfit_pmap *job, int nthreads) {
   if (nthreads > MAX_WORKERS) nthreads = MAX_WORKERS;
   if ((size_t)nthreads > job->n && job->n > 0) nthreads = (int)job->n;
   atomic_store(&job->next, 0);
+  job->ended = NULL;
+  if (job->done != NULL && job->n > 0) return run_reporting(job, nthreads, th);
   /* the calling thread is the last worker; a thread that cannot start is simply
   ** not there: the others take its items */
   for (k = 0; k < nthreads - 1; k++)

@@ -7,6 +7,7 @@
 #ifndef BSFIT_PARALLEL_H
 #define BSFIT_PARALLEL_H
 
+#include <pthread.h>
 #include <stdatomic.h>
 #include <stddef.h>
 
@@ -27,6 +28,15 @@ typedef struct bsfit_pmap {
   bsfit_pmap_item *items;
   size_t n;
   atomic_size_t next;       /* the next item to take (workers pull items in turn) */
+  /* Optional: called on the calling thread once per item, as items end (in the order
+  ** they end), with the item's index; its out and ok are then set. With it, the calling
+  ** thread reports instead of working (nthreads workers are started). */
+  void (*done)(void *ud, size_t i);
+  void *done_ud;
+  /* private to parallel.c: the ended items, in order, for done */
+  pthread_mutex_t mu;
+  pthread_cond_t cv;
+  size_t *ended, nended;
 } bsfit_pmap;
 
 /* Runs the job on nthreads workers (the calling thread is one of them). Every item

@@ -73,7 +73,7 @@ T.test("section: a good file gives its files and an ok row", function()
   local C = bs.curve.from_json and bs.curve.from_json(slurp(d .. "/cam.json"))
   if C then T.eq(C:distinct(), row.control_points) end
   local pic = slurp(d .. "/cam.svg")
-  T.ok(pic:find("<svg", 1, true) and pic:find(">start<", 1, true) and pic:find(">max ", 1, true),
+  T.ok(pic:find("<svg", 1, true) and pic:find(">start point<", 1, true) and pic:find(">max ", 1, true),
        "the picture marks the start point and the worst residual")
   os.execute("rm -rf '" .. d .. "'")
 end)
@@ -125,17 +125,6 @@ T.test("report.write_atomic: replaces the file, leaves no temporary", function()
   os.execute("rm -rf '" .. d .. "'")
 end)
 
-T.test("svg.section: y axis up, every layer present", function()
-  local P = bs.points.new { { 0, 0 }, { 10, 0 }, { 10, 5 } }
-  local text = svg.section { points = P, control = { { 0, 0 }, { 10, 5 } }, samples = P, closed = true,
-                             markers = { { 10, 5, "a<b" } }, title = "t", width = 224 }
-  -- width 224, margin 24: scale 17.6; (10, 5) maps to (200, 24) and (0, 0) to (24, 112)
-  T.ok(text:find('cx="200.00" cy="24.00"', 1, true), "top right point")
-  T.ok(text:find('cx="24.00" cy="112.00"', 1, true), "origin at the bottom")
-  T.ok(text:find("a&lt;b", 1, true), "labels escaped")
-  T.ok(text:find('class="curve"', 1, true) and text:find('class="control"', 1, true))
-end)
-
 T.test("the demo set is found next to the lua directory", function()
   if os.getenv("BSFIT_DEMO_DIR") then return end
   local d = rc.demo_dir()
@@ -159,4 +148,75 @@ T.test("section: --open and a strategy FILE.lua", function()
   T.eq(row.status, "ok", row.error)
   T.ok(slurp(d .. "/b.json"):find('"periodic": *false'), "an open curve")
   os.execute("rm -rf '" .. d .. "'")
+end)
+
+T.test("shard: the shards of any list partition it, balanced, indices kept", function()
+  for n = 0, 30 do
+    for N = 1, 7 do
+      local seen, sizes = {}, {}
+      for I = 0, N - 1 do
+        local list = {}
+        for k = 1, n do list[k] = { path = "p" .. k, name = "s" .. k } end
+        local part = rc.shard(list, { index = I, count = N })
+        sizes[#sizes + 1] = #part
+        for _, inp in ipairs(part) do
+          T.ok(not seen[inp.name], "in one shard only")
+          seen[inp.name] = true
+          T.eq(inp.name, "s" .. inp.index, "index = position in the whole list")
+        end
+      end
+      local count = 0
+      for _ in pairs(seen) do count = count + 1 end
+      T.eq(count, n, "every input in some shard")
+      T.ok(math.max(table.unpack(sizes)) - math.min(table.unpack(sizes)) <= 1, "balanced")
+    end
+  end
+end)
+
+T.test("user_message: Lua positions and argument wrappers off, paths and debug kept", function()
+  T.eq(rc.user_message("/x/y/auto.lua:498: bad argument #1 to 'breaks' (5 points leave few spans)",
+                       "a.csv"), "5 points leave few spans")
+  T.eq(rc.user_message("a.csv:4: not a number: 'abc'", "a.csv"), "a.csv:4: not a number: 'abc'")
+  T.ok(rc.user_message("mine.lua:1: attempt to index a nil value (local 't')", "a.csv")
+       :find("^internal error %(attempt to index a nil value"), "a bug says it is one")
+  T.eq(rc.user_message("boom\nstack traceback:\n\tx.lua:1", "a.csv"), "boom")
+  local full = "mine.lua:1: boom\nstack traceback:\n\tmine.lua:1: in main chunk"
+  T.eq(rc.user_message(full, "a.csv", true), full, "--debug keeps everything")
+  T.eq(rc.failure_line { input = "a.csv", error = "a.csv:4: bad" }, "a.csv:4: bad", "path once")
+  T.eq(rc.failure_line { input = "a.csv", error = "too few" }, "a.csv: too few")
+end)
+
+T.test("report.json_decode: reads what report.json writes, and standard JSON", function()
+  local s = 12345
+  local function rnd() s = (s * 1103515245 + 12345) % 2147483648; return s / 2147483648 end
+  local function value(depth)
+    local k = math.floor(rnd() * (depth > 3 and 4 or 6))
+    if k == 0 then return (rnd() - 0.5) * 10 ^ math.floor(rnd() * 40 - 20) end
+    if k == 1 then return math.floor(rnd() * 1e6) end
+    if k == 2 then
+      local t = {}
+      for i = 1, math.floor(rnd() * 8) do t[i] = string.char(math.floor(rnd() * 255) + 1) end
+      return table.concat(t)
+    end
+    if k == 3 then return rnd() < 0.5 end
+    local t = {}
+    for i = 1, math.floor(rnd() * 5) do
+      if k == 4 then t[i] = value(depth + 1) else t["k" .. i] = value(depth + 1) end
+    end
+    return t
+  end
+  for _ = 1, 300 do
+    local text = report.json(value(0))
+    local v, err = report.json_decode(text)
+    T.ok(err == nil, err)
+    T.eq(report.json(v), text, "round trip")
+  end
+  local v = report.json_decode(' { "a" : [1, -0.5, 2.5e-3, 1E2, true, false, null],\n "b": "\\u00e9\\n\\/" } ')
+  T.eq(v.a[1], 1); T.eq(v.a[2], -0.5); T.eq(v.a[3], 2.5e-3); T.eq(v.a[4], 100.0)
+  T.eq(v.a[5], true); T.eq(v.a[6], false); T.eq(v.a[7], report.null); T.eq(#v.a, 7)
+  T.eq(v.b, "é\n/")
+  for _, bad in ipairs { "", "{", "[1,]", '{"a" 1}', '"abc', "nul", "[1] x", '{"a":1,}' } do
+    local r, msg = report.json_decode(bad)
+    T.ok(r == nil and msg:find("^JSON: .* at byte %d+$"), ("'%s' refused: %s"):format(bad, tostring(msg)))
+  end
 end)

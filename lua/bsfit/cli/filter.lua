@@ -1,13 +1,14 @@
 -- lua/bsfit/cli/filter.lua
 -- `bsfit filter IN.json -k K [-o OUT.json]` (or `--delta D` instead of -k): smooths a
 -- curve by the box filter (SPEC 3) and writes the filtered curve as JSON, plus an SVG
--- of the curve before (grey) and after (red) next to it. Prints the maximum
+-- of the curve before (blue) and after (vermilion) next to it, with a legend. Prints the maximum
 -- deviation the filter introduced and the total turning and bending energy before
 -- and after. Exit status: 0 done, 1 the curve could not be read, filtered or
 -- written, 2 usage error.
 
 local bs = require "bsfit"
 local report = require "bsfit.report"
+local svg = require "bsfit.svg"
 
 local M = {}
 
@@ -69,11 +70,19 @@ function M.filter(C, o)
   return F
 end
 
-local function picture(C, F)
-  local doc = bs.svg.new(C)
-  doc:curve(C, { class = "before" })
-  doc:curve(F, { class = "curve" })
-  return doc:tostring()
+-- Before (blue, wide) and after (vermilion, narrower, on top): both visible where they
+-- coincide; colours apart for colour-blind readers (Okabe-Ito). docs/pictures.md.
+local function picture(C, F, o)
+  local k = math.max(400, math.min(2000, 20 * C:count()))
+  return svg.curves {
+    title = ("bsfit filter: %s"):format(o.input),
+    subtitle = ("%s; max deviation %.3g"):format(
+      o.delta and ("delta %g"):format(o.delta) or ("k = %d"):format(o.k), C:max_deviation(F)),
+    curves = {
+      { samples = C:sample(k), closed = C:is_periodic(), class = "before", colour = "#0072b2",
+        width = 4, label = "before" },
+      { samples = F:sample(k), closed = F:is_periodic(), class = "after", colour = "#d55e00",
+        width = 1.5, label = "after (filtered)" } } }
 end
 
 function M.main(args)
@@ -88,7 +97,7 @@ function M.main(args)
     if not C then error(o.input .. ": " .. tostring(msg), 0) end
     local F = M.filter(C, o)
     report.must_write(o.out, F:to_json())
-    report.must_write(o.out:gsub("%.json$", "") .. ".svg", picture(C, F))
+    report.must_write(o.out:gsub("%.json$", "") .. ".svg", picture(C, F, o))
     print(("%s: degree %d -> %d, max deviation %.6g, total turning %.6g -> %.6g, bending energy %.6g -> %.6g")
       :format(o.out, C:degree(), F:degree(), C:max_deviation(F), C:total_turning(), F:total_turning(),
               C:bending_energy(), F:bending_energy()))

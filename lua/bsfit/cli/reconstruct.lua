@@ -13,6 +13,7 @@
 local bs = require "bsfit"
 local report = require "bsfit.report"
 local svg = require "bsfit.svg"
+local progress = require "bsfit.progress"
 
 local M = {}
 
@@ -29,8 +30,13 @@ usage: bsfit reconstruct [INPUT...] [options]
   --open           fit open curves (auto and periodic strategies)
   --samples K      curve samples written to <name>.csv (default 1000)
   --format LIST    any of json,svg,csv,iges,step,dxf (default json,svg,csv)
+  --polygon MODE   the control polygon in the pictures: auto (drawn up to 60
+                   control points), on, off (default auto)
   -j N             run N sections at a time, one Lua state per worker (default 1)
-  -q               no progress line
+  --shard I/N      process only shard I of N (0 <= I < N): the inputs at positions
+                   I+1, I+1+N, ... of the sorted input list; `bsfit merge` joins them
+  -q               no progress line and no final line (failures are still reported)
+  --debug          failures with the Lua traceback
   -h, --help       this text
 ]]
 
@@ -77,10 +83,24 @@ local flags = {
   end,
   ["--format"] = function(o, v) o.formats = parse_formats(v) end,
   ["-j"] = function(o, v) o.jobs = positive_integer(v, "-j") end,
+  ["--shard"] = function(o, v)
+    local i, n = tostring(v):match("^(%d+)/(%d+)$")
+    i, n = math.tointeger(tonumber(i)), math.tointeger(tonumber(n))
+    if not i or not n or n < 1 or i >= n then
+      error(("--shard must be I/N with 0 <= I < N, got '%s'"):format(tostring(v)), 0)
+    end
+    o.shard = { index = i, count = n }
+  end,
+  ["--polygon"] = function(o, v)
+    local modes = { auto = "auto", on = true, off = false }
+    if modes[v] == nil then error("--polygon must be auto, on or off, got '" .. v .. "'", 0) end
+    if modes[v] == "auto" then o.polygon = nil else o.polygon = modes[v] end
+  end,
 }
 local switches = {
   ["--open"] = function(o) o.open = true end,
   ["-q"] = function(o) o.quiet = true end,
+  ["--debug"] = function(o) o.debug = true end,
   ["-h"] = function(o) o.help = true end,
   ["--help"] = function(o) o.help = true end,
 }
@@ -262,7 +282,7 @@ local function control_table(C)
 end
 
 -- Writes the requested files of a fitted section.
-local function write_outputs(spec, P, C, rep, S)
+local function write_outputs(spec, P, C, rep, S, w)
   local base = spec.outdir .. "/" .. spec.name
   local f = spec.formats
   if f.json then report.must_write(base .. ".json", C:to_json()) end
@@ -274,16 +294,13 @@ local function write_outputs(spec, P, C, rep, S)
   end
   if f.csv then report.must_write(base .. ".csv", points_csv(S)) end
   if f.svg then
-    local markers = {}
-    local sx, sy = P:get(rep.start_index or 1)
-    markers[1] = { sx, sy, "start" }
-    if rep.max_index then
-      local wx, wy = P:get(rep.max_index)
-      markers[2] = { wx, wy, ("max %.3g"):format(rep.max) }
-    end
     report.must_write(base .. ".svg", svg.section {
       points = P, samples = S, control = control_table(C), closed = C:is_periodic(),
-      markers = markers, title = spec.name })
+      polygon = spec.polygon, residuals = rep.residuals, weights = w, trust = rep.trust,
+      start_index = rep.start_index, max_index = rep.max_index, max = rep.max,
+      corners = rep.corners, pieces = rep.pieces, title = spec.name,
+      subtitle = ("%d points, %d control points, RMS %.3g, max %.3g (strategy %s)")
+        :format(#P, C:distinct(), rep.rms or 0 / 0, rep.max or 0 / 0, spec.strategy) })
   end
 end
 
@@ -302,8 +319,8 @@ end
 -- row, with status "error" and the message when something failed.
 function M.section(spec)
   local t0 = clock()
-  local row = { name = spec.name, input = spec.path, status = "ok", error = "" }
-  local ok, err = pcall(function()
+  local row = { name = spec.name, input = spec.path, status = "ok", error = "", index = spec.index }
+  local ok, err = xpcall(function()
     local P, w = bs.points.read(spec.path)
     if not P then error(tostring(w), 0) end
     row.points = #P
@@ -313,13 +330,62 @@ function M.section(spec)
     row.rms, row.max, row.max_index = rep.rms, rep.max, rep.max_index
     row.max_trusted = rep.max_trusted -- set when the file down-weights some points
     row.start_index = rep.start_index
-    write_outputs(spec, P, C, rep, samples(C, spec.samples))
-  end)
+    row.warnings = M.warnings_text(rep.warnings)
+    write_outputs(spec, P, C, rep, samples(C, spec.samples), w)
+  end, spec.debug and debug.traceback or function(e) return e end)
   if not ok then
-    row.status, row.error = "error", tostring(err):gsub("\n.*", "")
+    row.status, row.error = "error", M.user_message(err, spec.path, spec.debug)
   end
   row.ms = (clock() - t0) * 1000
   return row
+end
+
+-- A strategy's warnings (a string or an array of strings) as one line.
+function M.warnings_text(w)
+  if type(w) == "table" then
+    local t = {}
+    for i, s in ipairs(w) do t[i] = tostring(s) end
+    w = table.concat(t, "; ")
+  end
+  return w and tostring(w):gsub("%s*\n%s*", " ") or ""
+end
+
+-- The message a user sees for a failed section: one line, without Lua's
+-- "file.lua:123:" positions and traceback (unless debug: then the whole traceback).
+function M.user_message(err, path, debug_on)
+  local msg = tostring(err)
+  if debug_on then return msg end
+  msg = msg:gsub("\nstack traceback:.*", ""):gsub("\n.*", "")
+  if msg:sub(1, #path + 1) == path .. ":" then return msg end -- the reader's "file:line: ..."
+  local internal = false
+  repeat -- positions of Lua code: "[string ...]:12: ", "/x/y/auto.lua:498: "
+    local stripped = msg:gsub("^[^%s:]*%.lua:%d+:%s*", ""):gsub('^%[string "[^"]*"%]:%d+:%s*', "")
+    if stripped ~= msg then internal = true end
+    local done = stripped == msg
+    msg = stripped
+  until done
+  -- "bad argument #1 to 'breaks' (5 points leave too few ...)": the reason alone
+  msg = msg:match("^bad argument #%d+ to '[^']*' %((.*)%)$") or msg
+  if internal and msg:match("^attempt to") then
+    msg = "internal error (" .. msg .. "); rerun with --debug for the details"
+  end
+  return msg
+end
+
+-- The line that reports a failed section: its path once, then the message.
+function M.failure_line(row)
+  local msg, path = tostring(row.error), tostring(row.input)
+  if msg:sub(1, #path + 1) == path .. ":" then return msg end
+  return path .. ": " .. msg
+end
+
+-- What a section's end says on stderr: the failure line, "PATH: warning: ..." for a
+-- section with warnings, nil otherwise.
+function M.report_line(row)
+  if row.status ~= "ok" then return M.failure_line(row) end
+  if row.warnings and row.warnings ~= "" then
+    return ("%s: warning: %s"):format(tostring(row.input), row.warnings)
+  end
 end
 
 -- The worker entry of -j: a serialized spec in, a serialized row out.
@@ -334,43 +400,49 @@ end
 -- =======================================================================
 
 local summary_columns = { "name", "input", "points", "control_points", "rms", "max", "max_index",
-                          "max_trusted", "start_index", "status", "error" }
+                          "max_trusted", "start_index", "status", "error", "warnings", "index" }
+M.summary_columns = summary_columns
 
 local function specs_of(o, inputs)
   local specs = {}
   for i, inp in ipairs(inputs) do
-    specs[i] = { path = inp.path, name = inp.name, outdir = o.outdir, strategy = o.strategy,
-                 degree = o.degree, count = o.count, tol = o.tol, open = o.open,
-                 samples = o.samples, formats = o.formats }
+    specs[i] = { path = inp.path, name = inp.name, index = inp.index, outdir = o.outdir,
+                 strategy = o.strategy, degree = o.degree, count = o.count, tol = o.tol,
+                 open = o.open, samples = o.samples, formats = o.formats, polygon = o.polygon,
+                 debug = o.debug }
   end
   return specs
 end
 
--- Runs the sections one after the other, with a progress line on a terminal.
-local function run_serial(specs, progress)
+-- Runs the sections one after the other; prog hears of each as it ends.
+local function run_serial(specs, prog)
   local rows = {}
   for i, s in ipairs(specs) do
-    if progress then io.stderr:write(("\r[%d/%d] %s\027[K"):format(i, #specs, s.name)) end
     rows[i] = M.section(s)
+    prog:ended(rows[i].status == "ok", M.report_line(rows[i]))
   end
-  if progress and #specs > 0 then io.stderr:write("\r\027[K") end
   return rows
 end
 
--- Runs the sections on n worker threads (bs.parallel.map), rows in input order.
-local function run_parallel(specs, n)
-  local items = {}
+-- The row of a section whose worker failed outside M.section (its engine could not
+-- start, or ran out of memory).
+local function worker_failed(s, err, debug_on)
+  return { name = s.name, input = s.path, index = s.index, status = "error", ms = 0,
+           error = "worker: " .. M.user_message(err or "no result", s.path, debug_on) }
+end
+
+-- Runs the sections on n worker threads (bs.parallel.map), rows in input order; prog
+-- hears of each section as it ends, whatever its place.
+local function run_parallel(specs, n, prog, debug_on)
+  local items, rows = {}, {}
   for i, s in ipairs(specs) do items[i] = report.serialize(s) end
-  local res, errs = bs.parallel.map("bsfit.cli.reconstruct", "section_serialized", items, n)
-  local rows = {}
-  for i, s in ipairs(specs) do
-    if res[i] then
-      rows[i] = report.deserialize(res[i])
-    else
-      rows[i] = { name = s.name, input = s.path, status = "error", ms = 0,
-                  error = "worker: " .. tostring(errs and errs[i] or "no result"):gsub("\n.*", "") }
-    end
+  local function done(i, ok, out)
+    rows[i] = ok and report.deserialize(out) or worker_failed(specs[i], out, debug_on)
+    prog:ended(rows[i].status == "ok", M.report_line(rows[i]))
   end
+  bs.parallel.map("bsfit.cli.reconstruct", "section_serialized", items,
+                  { threads = n, done = done })
+  for i, s in ipairs(specs) do rows[i] = rows[i] or worker_failed(s, nil, debug_on) end
   return rows
 end
 
@@ -379,26 +451,77 @@ local function is_terminal()
   return ok == true or ok == 0
 end
 
-local function write_summaries(o, rows)
-  report.must_write(o.outdir .. "/summary.csv", report.csv(summary_columns, rows))
+local function exists(path)
+  local f = io.open(path, "rb")
+  if f then f:close() end
+  return f ~= nil
+end
+
+-- Writes summary.csv, summary.json, timing.csv and index.html of the rows (in input
+-- order) into outdir. meta: strategy, degree, and shard ({index, count, total}: a
+-- shard's summary.json says which one it is, so `bsfit merge` can tell a missing one).
+-- Shared with `bsfit merge`, so a merged set of shards gives the same files as one run.
+function M.write_summaries(outdir, meta, rows)
+  report.must_write(outdir .. "/summary.csv", report.csv(summary_columns, rows))
   local clean = {}
   for i, r in ipairs(rows) do
     local c = {}
     for _, k in ipairs(summary_columns) do c[k] = r[k] end
     clean[i] = c
   end
-  report.must_write(o.outdir .. "/summary.json", report.json {
-    strategy = o.strategy, degree = o.degree, sections = clean } .. "\n")
+  report.must_write(outdir .. "/summary.json", report.json {
+    strategy = meta.strategy, degree = meta.degree, sections = clean, shard = meta.shard } .. "\n")
   local timing = {}
   for i, r in ipairs(rows) do timing[i] = { name = r.name, ms = ("%.3f"):format(r.ms or 0) } end
-  report.must_write(o.outdir .. "/timing.csv", report.csv({ "name", "ms" }, timing))
+  report.must_write(outdir .. "/timing.csv", report.csv({ "name", "ms" }, timing))
   local items = {}
   for i, r in ipairs(rows) do
-    items[i] = { name = r.name, svg = (o.formats.svg and r.status == "ok") and (r.name .. ".svg") or nil,
-                 caption = r.status == "ok" and ("%s: %d points, %d control points, max %.3g")
-                   :format(r.name, r.points, r.control_points, r.max) or (r.name .. ": " .. r.error) }
+    local pic = r.name .. ".svg"
+    local drawn = r.status == "ok" and exists(outdir .. "/" .. pic)
+    items[i] = setmetatable({ svg = drawn and pic or nil }, { __index = r })
   end
-  report.must_write(o.outdir .. "/index.html", svg.index("bsfit reconstruct", items))
+  report.must_write(outdir .. "/index.html", svg.index("bsfit reconstruct", items))
+end
+
+-- The inputs of shard I/N: those at 1-based positions k with (k - 1) % N == I (round
+-- robin over the sorted input list, so shards get similar mixes); each keeps its
+-- position in the whole list as its index.
+function M.shard(inputs, shard)
+  local out = {}
+  for k, inp in ipairs(inputs) do
+    inp.index = k
+    if not shard or (k - 1) % shard.count == shard.index then out[#out + 1] = inp end
+  end
+  return out
+end
+
+-- Runs the sections, with progress and failures on stderr; returns the rows.
+local function run(o, specs)
+  local prog = progress.new { total = #specs, live = not o.quiet and is_terminal(),
+                              prefix = "bsfit reconstruct: ", clock = clock }
+  local rows
+  if o.jobs > 1 and #specs > 1 and bs.parallel then
+    rows = run_parallel(specs, o.jobs, prog, o.debug)
+  else
+    if o.jobs > 1 and not bs.parallel then
+      warn("-j: this build has no bsfit.parallel; running serially")
+    end
+    rows = run_serial(specs, prog)
+  end
+  prog:finish()
+  return rows, prog:elapsed()
+end
+
+-- "N sections: K ok, F failed, W with warnings, in T s; outputs in DIR"
+local function final_line(o, rows, seconds)
+  local failed, warned = 0, 0
+  for _, r in ipairs(rows) do
+    if r.status ~= "ok" then failed = failed + 1
+    elseif r.warnings and r.warnings ~= "" then warned = warned + 1 end
+  end
+  return failed, ("%s%d sections: %d ok, %d failed, %d with warnings, in %.1f s; outputs in %s")
+    :format(o.shard and ("shard %d/%d: "):format(o.shard.index, o.shard.count) or "", #rows,
+            #rows - failed, failed, warned, seconds, o.outdir)
 end
 
 -- Entry point: args is the list of command-line words after `reconstruct`.
@@ -413,31 +536,17 @@ function M.main(args)
   if o.help then io.stdout:write(M.usage); return 0 end
   local okl, lerr = pcall(load_strategy, o.strategy)
   if not okl then warn("%s", tostring(lerr)); return 2 end
-  local inputs = M.inputs(o.inputs)
-  if #inputs == 0 then warn("no input sections"); return 2 end
+  local all = M.inputs(o.inputs)
+  local inputs = M.shard(all, o.shard)
+  if o.shard then o.shard.total = #all end
+  if #inputs == 0 and not o.shard then warn("no input sections"); return 2 end
   os.execute("mkdir -p " .. shell_quote(o.outdir))
   if not is_dir(o.outdir) then warn("cannot create output directory %s", o.outdir); return 2 end
-  local specs = specs_of(o, inputs)
-  local rows
-  if o.jobs > 1 and #specs > 1 and bs.parallel then
-    rows = run_parallel(specs, o.jobs)
-  else
-    if o.jobs > 1 and not bs.parallel then warn("-j: this build has no bsfit.parallel; running serially") end
-    rows = run_serial(specs, not o.quiet and is_terminal())
-  end
-  local failed = 0
-  for _, r in ipairs(rows) do
-    if r.status ~= "ok" then
-      failed = failed + 1
-      warn("%s: %s", r.input, r.error)
-    end
-  end
-  local okw, werr = pcall(write_summaries, o, rows)
+  local rows, seconds = run(o, specs_of(o, inputs))
+  local okw, werr = pcall(M.write_summaries, o.outdir, o, rows)
   if not okw then warn("%s", tostring(werr)); return 1 end
-  if not o.quiet then
-    io.stderr:write(("bsfit reconstruct: %d sections, %d failed, results in %s\n")
-                    :format(#rows, failed, o.outdir))
-  end
+  local failed, line = final_line(o, rows, seconds)
+  if not o.quiet then warn("%s", line) end
   return failed > 0 and 1 or 0
 end
 
