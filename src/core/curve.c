@@ -51,6 +51,23 @@ bsfit_err bsfit_curve_alloc(bsfit_curve *c, int degree, int dim, size_t n, int r
   return bsfit__ok(st);
 }
 
+/* A closed curve has no ends: a knot of multiplicity p + 1 anywhere, the seam included,
+** would break it into pieces (a jump the expanded form cannot express, and that every
+** operation on the period would mishandle). The stored vector holds p knots beyond each
+** end of the period, so a seam run of more than p copies shows there as a run > p. */
+static bsfit_err periodic_multiplicity(const bsfit_curve *c, bsfit_status *st) {
+  size_t i, run = 1, p = (size_t)c->degree;
+  for (i = 1; i < nknots_of(c); i++) {
+    run = c->knots[i] == c->knots[i - 1] ? run + 1 : 1;
+    if (run > p)
+      return bsfit__fail(st, BSFIT_EMULT,
+                         "knot %g of a closed curve has multiplicity %zu > degree %zu: the "
+                         "curve would not be continuous there",
+                         c->knots[i], run, p);
+  }
+  return BSFIT_OK;
+}
+
 static bsfit_err validate_periodic(const bsfit_curve *c, bsfit_status *st) {
   size_t i, p = (size_t)c->degree, N, d = (size_t)c->dim;
   const double *U = c->knots;
@@ -75,7 +92,7 @@ static bsfit_err validate_periodic(const bsfit_curve *c, bsfit_status *st) {
     if (fabs((U[i + N] - U[i + N - 1]) - (U[i] - U[i - 1])) > tol)
       return bsfit__fail(st, BSFIT_ENOTPERIODIC, "knot spans %zu and %zu differ", i - 1,
                          i + N - 1);
-  return BSFIT_OK;
+  return periodic_multiplicity(c, st);
 }
 
 bsfit_err bsfit_curve_validate(const bsfit_curve *c, bsfit_status *st) {

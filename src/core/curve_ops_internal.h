@@ -34,9 +34,11 @@ bsfit_err bsfit__hc_unroll(const bsfit_curve *c, bsfit__hcurve *h, bsfit_status 
 /* Knot refinement (NURBS Book A5.4) on raw arrays, for curves and for surface nets
 ** filtered as curves of rows: inserts the r sorted knots X (inside the domain,
 ** multiplicities already checked) into the degree-q spline (U, P) of n points of d
-** doubles each; Ub gets n+r+q+1 knots, Q n+r points (caller-owned). */
-void bsfit__refine_raw(int q, size_t n, size_t d, const double *U, const double *P,
-                       const double *X, size_t r, double *Ub, double *Q);
+** doubles each; Ub gets n+r+q+1 knots, Q n+r points (caller-owned). Returns 0, touching
+** neither Ub nor Q, when U is not sorted, X is not sorted or leaves the domain, or a
+** knot would pass multiplicity q+1; else 1. */
+int bsfit__refine_raw(int q, size_t n, size_t d, const double *U, const double *P,
+                      const double *X, size_t r, double *Ub, double *Q);
 /* Knot refinement (A5.4): X sorted, within h's domain, multiplicities already checked. */
 bsfit_err bsfit__hc_refine(const bsfit__hcurve *h, const double *X, size_t nx,
                            bsfit__hcurve *out, bsfit_status *st);
