@@ -34,7 +34,8 @@
 ** @param[in]  k    highest order, >= 0 (any value: no internal limit).
 ** @param[out] out  (k+1)*dim doubles: C(u), C'(u), ..., C^(k)(u), each dim coordinates.
 ** @return BSFIT_OK, BSFIT_EINVAL (empty curve, k < 0, out NULL), BSFIT_EDIM,
-**         BSFIT_EDEGREE, BSFIT_ENONFINITE (u NaN or infinite). */
+**         BSFIT_EDEGREE, BSFIT_ENONFINITE (u NaN or infinite), BSFIT_ERANGE (a derivative
+**         overflows: high orders over tiny knot spans, or u extrapolated far out). */
 BSFIT_API bsfit_err bsfit_curve_derivs(const bsfit_curve *c, double u, int k, double *out,
                                        bsfit_status *st);
 

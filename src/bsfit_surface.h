@@ -97,7 +97,8 @@ BSFIT_API bsfit_err bsfit_surface_eval(const bsfit_surface *s, double u, double 
 ** @param[in]  k   0 <= k <= BSFIT_MAX_DEGREE.
 ** @param[out] out (k+1)*(k+1)*dim doubles: d^(a+b) S / du^a dv^b starts at
 **                 out[(a*(k+1) + b)*dim], for a, b = 0..k (out[0..dim-1] is S(u,v)).
-** @return BSFIT_OK, BSFIT_EINVAL (k out of range) or BSFIT_ENONFINITE (u, v). */
+** @return BSFIT_OK, BSFIT_EINVAL (k out of range), BSFIT_ENONFINITE (u, v) or BSFIT_ERANGE
+**         (a derivative overflows: high orders over tiny knot spans). */
 BSFIT_API bsfit_err bsfit_surface_derivs(const bsfit_surface *s, double u, double v, int k,
                                          double *out, bsfit_status *st);
 

@@ -104,11 +104,17 @@ bsfit_err bsfit_curve_validate(const bsfit_curve *c, bsfit_status *st) {
     return bsfit__fail(st, BSFIT_EDIM, "dimension %d out of range 1..4", c->dim);
   e = bsfit_knots_validate(c->knots, nknots_of(c), c->degree, c->n, st);
   if (e != BSFIT_OK) return e;
-  if (!bsfit__all_finite(c->ctrl, c->n * (size_t)c->dim))
+  i = bsfit__first_out_of_range(c->ctrl, c->n * (size_t)c->dim);
+  if (i < c->n * (size_t)c->dim && !isfinite(c->ctrl[i]))
     return bsfit__fail(st, BSFIT_ENONFINITE, "control points contain NaN or Inf");
+  if (i < c->n * (size_t)c->dim)
+    return bsfit__fail(st, BSFIT_ERANGE, "control point %zu has a coordinate %g beyond 1e100",
+                       i / (size_t)c->dim, c->ctrl[i]);
+  /* normal, bounded weights: subnormal ones lose their digits, and with the coordinate
+  ** bound every homogeneous product w x stays below 1e200 */
   for (i = 0; c->weights && i < c->n; i++)
-    if (!isfinite(c->weights[i]) || !(c->weights[i] > 0))
-      return bsfit__fail(st, BSFIT_EWEIGHT, "weight %zu is %g (must be positive and finite)", i,
+    if (!(c->weights[i] >= BSFIT_WEIGHT_MIN && c->weights[i] <= BSFIT_WEIGHT_MAX))
+      return bsfit__fail(st, BSFIT_EWEIGHT, "weight %zu is %g (must be in [1e-100, 1e100])", i,
                          c->weights[i]);
   if (c->bezier && c->n != (size_t)c->degree + 1)
     return bsfit__fail(st, BSFIT_EINVAL, "a Bezier curve of degree %d needs %d control points",

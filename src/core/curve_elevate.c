@@ -283,6 +283,7 @@ bsfit_err bsfit_curve_elevate(const bsfit_curve *c, int t, bsfit_curve *out, bsf
   /* a continuous degree-0 spline has one span: a constant, elevated like a Bézier curve */
   if (e == BSFIT_OK && (c->bezier || c->degree == 0)) e = elevate_bezier(c, t, &tmp, st);
   else if (e == BSFIT_OK) e = elevate_spline(c, t, &tmp, st);
+  if (e == BSFIT_OK) e = bsfit__curve_result(&tmp, "degree elevation", st);
   if (e != BSFIT_OK) return e;
   bsfit_curve_move(&tmp, out);
   return bsfit__ok(st);

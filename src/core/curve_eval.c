@@ -75,6 +75,10 @@ bsfit_err bsfit_curve_derivs(const bsfit_curve *c, double u, int k, double *out,
   u = bsfit__curve_wrap(c, u);
   s = bsfit_knots_find_span(c->knots, c->n, c->degree, u);
   bsfit__curve_derivs_span(c, s, u, k, out);
+  /* the k-th derivative grows like 1 / span^k: over knots 1e-15 apart it can pass
+  ** DBL_MAX even for bounded control points */
+  if (!bsfit__all_finite(out, (size_t)(k + 1) * (size_t)c->dim))
+    return bsfit__fail(st, BSFIT_ERANGE, "derivative of order <= %d at u = %g overflows", k, u);
   return bsfit__ok(st);
 }
 

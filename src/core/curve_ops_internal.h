@@ -85,6 +85,12 @@ bsfit_err bsfit__nearest_init(bsfit__nearest *nn, const double *smp, size_t K, s
 size_t bsfit__nearest_find(const bsfit__nearest *nn, const double *P);
 void bsfit__nearest_free(bsfit__nearest *nn);
 
+/* The post-condition of every operation that builds a curve: tmp passes
+** bsfit_curve_validate (finite, in range, knots sound). Else tmp is freed and the
+** validation's code returned, its message prefixed by what the operation was. O(n), as
+** the operations are. */
+bsfit_err bsfit__curve_result(bsfit_curve *tmp, const char *op, bsfit_status *st);
+
 /* Cheap O(1) checks of a curve handed to an operation: not NULL, arrays present,
 ** degree and dimension in range. The full O(n) check is bsfit_curve_validate. */
 bsfit_err bsfit__curve_check(const bsfit_curve *c, bsfit_status *st);

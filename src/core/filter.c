@@ -190,11 +190,10 @@ static bsfit__fview curve_view(const bsfit_curve *c) {
   return v;
 }
 
-/* Hands f's arrays (allocated with *a) to a curve and moves it into out. With
-** `check`, the curve is validated first and out (possibly the input curve) survives
-** an invalid result; the moving average builds valid curves by construction and
-** skips this O(n) pass. */
-static bsfit_err give_curve(bsfit__fspline *f, int dim, int periodic, int check,
+/* Hands f's arrays (allocated with *a) to a curve and moves it into out. The curve is
+** validated first (O(n), like the filters: OK must mean a valid curve) and out (possibly
+** the input curve) survives an invalid result. */
+static bsfit_err give_curve(bsfit__fspline *f, int dim, int periodic,
                             const bsfit_allocator *a, bsfit_curve *out, bsfit_status *st) {
   bsfit_curve res;
   bsfit_err e;
@@ -207,7 +206,7 @@ static bsfit_err give_curve(bsfit__fspline *f, int dim, int periodic, int check,
   res.periodic = periodic;
   res.alloc = *a;
   memset(f, 0, sizeof *f);
-  e = check ? bsfit_curve_validate(&res, st) : BSFIT_OK;
+  e = bsfit_curve_validate(&res, st);
   if (e != BSFIT_OK) {
     bsfit_curve_free(&res);
     return e;
@@ -233,6 +232,11 @@ bsfit_err bsfit_filter_box_curve(const bsfit_curve *c, int k, bsfit_curve *out,
     return bsfit__fail(st, BSFIT_EINVAL,
                        "window width k = %d is wider than the curve's %zu knot spans", k,
                        domain_spans(c));
+  if (c->periodic && domain_spans(c) < (size_t)c->degree + 2)
+    return bsfit__fail(st, BSFIT_ENOTPERIODIC,
+                       "filtering raises the degree to %d, and a closed curve of that degree "
+                       "needs %d distinct control points; this one has %zu",
+                       c->degree + 1, c->degree + 2, domain_spans(c));
   if (!bsfit_curve_is_uniform(c))
     return bsfit__fail(st, BSFIT_EINVAL,
                        "knot spans are not all equal (clamped or non-uniform): use "
@@ -242,7 +246,7 @@ bsfit_err bsfit_filter_box_curve(const bsfit_curve *c, int k, bsfit_curve *out,
   e = c->periodic ? bsfit__filter_ma_periodic(&v, k, &a, &f, st)
                   : bsfit__filter_ma_open(&v, k, &a, &f, st);
   if (e != BSFIT_OK) return e;
-  return give_curve(&f, c->dim, c->periodic, 0, &a, out, st);
+  return give_curve(&f, c->dim, c->periodic, &a, out, st);
 }
 
 static bsfit_err check_delta(double delta, double length, const char *what, bsfit_status *st) {
@@ -271,7 +275,7 @@ bsfit_err bsfit_filter_box_curve_delta(const bsfit_curve *c, double delta, bsfit
   e = c->periodic ? bsfit__filter_exact_periodic(&v, delta, &a, &f, st)
                   : bsfit__filter_exact_open(&v, delta, &a, &f, st);
   if (e != BSFIT_OK) return e;
-  return give_curve(&f, c->dim, c->periodic, 1, &a, out, st);
+  return give_curve(&f, c->dim, c->periodic, &a, out, st);
 }
 
 /* }==================================================================== */

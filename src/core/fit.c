@@ -86,6 +86,11 @@ static bsfit_err check_opts(const bsfit_fit_opts *o, bsfit_status *st) {
     return bsfit__fail(st, BSFIT_ENONFINITE, "tangent_start is not finite");
   if (o->tangent_end && !bsfit__all_finite(o->tangent_end, (size_t)o->tangent_dim))
     return bsfit__fail(st, BSFIT_ENONFINITE, "tangent_end is not finite");
+  if ((o->tangent_start &&
+       bsfit__first_out_of_range(o->tangent_start, (size_t)o->tangent_dim) < (size_t)o->tangent_dim) ||
+      (o->tangent_end &&
+       bsfit__first_out_of_range(o->tangent_end, (size_t)o->tangent_dim) < (size_t)o->tangent_dim))
+    return bsfit__fail(st, BSFIT_ERANGE, "an end tangent has a coordinate beyond 1e100");
   need = (size_t)(o->tangent_start ? 2 : o->fix_ends ? 1 : 0) +
          (size_t)(o->tangent_end ? 2 : o->fix_ends ? 1 : 0);
   if (need > o->count)
@@ -333,6 +338,24 @@ static bsfit_err open_solve(bsfit_fitter *f, const double *pts, size_t m, int di
 ** The fit
 ** ======================================================================= */
 
+/* Every point and parameter, checked here for both solvers alike: the sums of the
+** assembly reveal a NaN only where a row reaches a free unknown, and with fixed ends
+** and no free unknown at all nothing would (QR returned OK with a NaN rms). Coordinates
+** beyond BSFIT_COORD_MAX are refused: their squared residuals would overflow. */
+static bsfit_err check_fit_values(const double *pts, size_t m, int dim, const double *u,
+                                  bsfit_status *st) {
+  size_t d = (size_t)dim, k = bsfit__first_out_of_range(pts, m * d);
+  if (k < m * d && !isfinite(pts[k]))
+    return bsfit__fail(st, BSFIT_ENONFINITE, "point %zu has a NaN or Inf coordinate", k / d);
+  if (k < m * d)
+    return bsfit__fail(st, BSFIT_ERANGE, "point %zu has a coordinate %g beyond 1e100", k / d,
+                       pts[k]);
+  for (k = 0; k < m; k++)
+    if (!isfinite(u[k]))
+      return bsfit__fail(st, BSFIT_ENONFINITE, "parameter %zu is not finite", k);
+  return BSFIT_OK;
+}
+
 static bsfit_err check_fit_args(const bsfit_fitter *f, const double *pts, size_t m, int dim,
                                 const double *u, const bsfit_curve *out, bsfit_status *st) {
   if (f == NULL || pts == NULL || u == NULL || out == NULL)
@@ -344,7 +367,7 @@ static bsfit_err check_fit_args(const bsfit_fitter *f, const double *pts, size_t
   if (m < f->count)
     return bsfit__fail(st, BSFIT_ETOOFEW, "%zu points are fewer than %zu control points", m,
                        f->count);
-  return BSFIT_OK;
+  return check_fit_values(pts, m, dim, u, st);
 }
 
 /* Knots of this fit from the rule (fixed knots were loaded at configuration). */

@@ -39,6 +39,9 @@ size_t bsfit__mulsize(size_t n, size_t size);
 /* Non-zero when every one of the n doubles is finite. */
 int bsfit__all_finite(const double *x, size_t n);
 
+/* Index of the first of the n doubles with |x| > BSFIT_COORD_MAX or NaN, or n if none. */
+size_t bsfit__first_out_of_range(const double *x, size_t n);
+
 /* curve.c: u wrapped into one period (periodic curves only; others unchanged) */
 double bsfit__curve_wrap(const bsfit_curve *c, double u);
 /* curve.c: C(u) for a valid curve and finite u, no checks */

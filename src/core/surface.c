@@ -93,11 +93,15 @@ bsfit_err bsfit_surface_validate(const bsfit_surface *s, bsfit_status *st) {
   e = bsfit_knots_validate(s->knots_v, nknots_v(s), s->degree_v, s->nv, st);
   if (e != BSFIT_OK) return name_direction(st, e, 'v');
   np = npoints(s);
-  if (!bsfit__all_finite(s->ctrl, np * (size_t)s->dim))
+  i = bsfit__first_out_of_range(s->ctrl, np * (size_t)s->dim);
+  if (i < np * (size_t)s->dim && !isfinite(s->ctrl[i]))
     return bsfit__fail(st, BSFIT_ENONFINITE, "control points contain NaN or Inf");
+  if (i < np * (size_t)s->dim)
+    return bsfit__fail(st, BSFIT_ERANGE, "a control point has a coordinate %g beyond 1e100",
+                       s->ctrl[i]);
   for (i = 0; s->weights && i < np; i++)
-    if (!isfinite(s->weights[i]) || !(s->weights[i] > 0))
-      return bsfit__fail(st, BSFIT_EWEIGHT, "weight (%zu, %zu) is %g (must be positive and finite)",
+    if (!(s->weights[i] >= BSFIT_WEIGHT_MIN && s->weights[i] <= BSFIT_WEIGHT_MAX))
+      return bsfit__fail(st, BSFIT_EWEIGHT, "weight (%zu, %zu) is %g (must be in [1e-100, 1e100])",
                          i / s->nv, i % s->nv, s->weights[i]);
   if (s->bezier && (s->nu != (size_t)s->degree_u + 1 || s->nv != (size_t)s->degree_v + 1))
     return bsfit__fail(st, BSFIT_EINVAL,
@@ -318,6 +322,9 @@ bsfit_err bsfit_surface_derivs(const bsfit_surface *s, double u, double v, int k
   if (s->weights != NULL) {
     rational_derivs((size_t)s->dim, k, W, out);
   }
+  if (!bsfit__all_finite(out, (size_t)(k + 1) * (size_t)(k + 1) * (size_t)s->dim))
+    return bsfit__fail(st, BSFIT_ERANGE, "derivatives of order <= %d at (%g, %g) overflow", k, u,
+                       v);
   return bsfit__ok(st);
 }
 

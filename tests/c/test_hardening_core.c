@@ -215,12 +215,332 @@ static void test_periodic_issue_case(void **state) {
 
 /* }==================================================================== */
 
+
+/* {====================================================================
+** Finding 7: both solvers check every input, even with no free unknown
+** ===================================================================== */
+
+/* Given fits of degree 1-3 with fixed ends, fixed clamped knots and as few control
+** points as the constraints fix (no free unknown) or a few more, when one point
+** coordinate or one parameter is NaN, +Inf or -Inf at a random place, then every
+** solver answers BSFIT_ENONFINITE; the clean data fit OK with a finite rms equal to
+** the one computed here from the curve. */
+static void test_fit_nonfinite_no_free(void **state) {
+  static const bsfit_solver solvers[3] = {BSFIT_SOLVER_CHOLESKY, BSFIT_SOLVER_QR,
+                                          BSFIT_SOLVER_AUTO};
+  const double bad[3] = {NAN, INFINITY, -INFINITY};
+  test_rng r = {0x7u};
+  int trial;
+  (void)state;
+  for (trial = 0; trial < 90; trial++) {
+    int p = 1 + trial % 3, sv = (trial / 3) % 3, extra = trial % 2 ? 0 : 1;
+    size_t count = (size_t)p + 1 + (size_t)extra, m = 8 + (size_t)(rng_uniform(&r) * 40), k, i;
+    double U[16], pts[200], u[100], rms = 0.0, y[2];
+    bsfit_fit_opts o;
+    bsfit_fitter *f = NULL;
+    bsfit_fit_report rep;
+    bsfit_curve c;
+    bsfit_status st;
+    assert_int_equal(bsfit_knots_clamped(p, count, 0.0, 1.0, U, &st), BSFIT_OK);
+    for (k = 0; k < m; k++) {
+      u[k] = (double)k / (double)(m - 1);
+      pts[2 * k] = u[k] * 3.0 + rng_range(&r, -0.1, 0.1);
+      pts[2 * k + 1] = sin(3.0 * u[k]) + rng_range(&r, -0.1, 0.1);
+    }
+    bsfit_fit_opts_init(&o);
+    o.degree = p;
+    o.count = count;
+    o.knots = U;
+    o.nknots = count + (size_t)p + 1;
+    o.fix_ends = 1;
+    o.solver = solvers[sv];
+    assert_int_equal(bsfit_fitter_new(&f, &o, NULL, &st), BSFIT_OK);
+    bsfit_curve_init(&c);
+    assert_int_equal(bsfit_fitter_fit(f, pts, m, 2, u, NULL, &c, &rep, NULL, &st), BSFIT_OK);
+    for (k = 0; k < m; k++) {
+      ref_eval(&c, u[k], y);
+      rms += (y[0] - pts[2 * k]) * (y[0] - pts[2 * k]) + (y[1] - pts[2 * k + 1]) * (y[1] - pts[2 * k + 1]);
+    }
+    assert_true(fabs(rep.rms - sqrt(rms / (double)m)) <= 1e-12);
+    for (i = 0; i < 3; i++) {
+      size_t at = (size_t)(rng_uniform(&r) * (double)m);
+      double keep;
+      int which = (int)(rng_uniform(&r) * 3.0); /* x, y or the parameter */
+      double *slot = which == 2 ? &u[at] : &pts[2 * at + (size_t)which];
+      keep = *slot;
+      *slot = bad[i];
+      assert_int_equal(bsfit_fitter_fit(f, pts, m, 2, u, NULL, &c, &rep, NULL, &st),
+                       BSFIT_ENONFINITE);
+      *slot = keep;
+    }
+    bsfit_curve_free(&c);
+    bsfit_fitter_free(f);
+  }
+}
+
+/* }==================================================================== */
+
+/* {====================================================================
+** Finding 8: chord parameters never underflow
+** ===================================================================== */
+
+/* Chords computed here after scaling by an exact power of two (frexp/ldexp), so that
+** neither squares nor sums leave the normal range. */
+static double scaled_chord(const double *a, const double *b, int dim, int centripetal) {
+  double big = 0.0, s = 0.0, c;
+  int k, ex;
+  for (k = 0; k < dim; k++) big = fmax(big, fabs(a[k] - b[k]));
+  if (big == 0.0) return 0.0;
+  (void)frexp(big, &ex);
+  for (k = 0; k < dim; k++) {
+    double t = ldexp(a[k] - b[k], -ex);
+    s += t * t;
+  }
+  c = ldexp(sqrt(s), ex);
+  return centripetal ? sqrt(c) : c;
+}
+
+/* Given random polylines of 3-40 points of dimension 1-4 at scales 1e-320..1e100
+** (subnormal coordinates included), with repeated points, when parameterised by chord
+** or centripetal length, open or closed, then the answer is OK with finite, non-
+** decreasing parameters in [0, 1] equal to the scaled reference to 1e-12, or an error
+** that the data explains (all points equal; a closed section ending on its start). */
+static void test_params_no_underflow(void **state) {
+  test_rng r = {0x8u};
+  int trial;
+  (void)state;
+  for (trial = 0; trial < 3000; trial++) {
+    int dim = 1 + trial % 4, kind = trial % 2 ? BSFIT_PARAM_CHORD : BSFIT_PARAM_CENTRIPETAL;
+    int closed = (trial / 2) % 2;
+    size_t m = 3 + (size_t)(rng_uniform(&r) * 38), k, c;
+    double scale = pow(10.0, rng_range(&r, -320.0, 100.0)), pts[4 * 41], u[41], ref[41], tot;
+    bsfit_status st;
+    bsfit_err e;
+    for (k = 0; k < m; k++)
+      for (c = 0; c < (size_t)dim; c++)
+        pts[k * (size_t)dim + c] = k > 0 && rng_uniform(&r) < 0.2 ? pts[(k - 1) * (size_t)dim + c]
+                                                                : scale * rng_range(&r, -1, 1);
+    if (trial % 7 == 0) /* the issue's case, scaled: one point apart, the rest equal */
+      for (k = 1; k < m; k++)
+        for (c = 0; c < (size_t)dim; c++) pts[k * (size_t)dim + c] = 0.0;
+    e = bsfit_params(pts, m, dim, (bsfit_param_kind)kind, closed, u, &st);
+    ref[0] = 0.0;
+    for (k = 1; k < m; k++)
+      ref[k] = ref[k - 1] + scaled_chord(pts + (k - 1) * (size_t)dim, pts + k * (size_t)dim, dim,
+                                         kind == BSFIT_PARAM_CENTRIPETAL);
+    tot = ref[m - 1] + (closed ? scaled_chord(pts + (m - 1) * (size_t)dim, pts, dim,
+                                              kind == BSFIT_PARAM_CENTRIPETAL) : 0.0);
+    if (e != BSFIT_OK) {
+      assert_true(tot == 0.0 ? e == BSFIT_EDEGENERATE : (closed && e == BSFIT_EINVAL));
+      continue;
+    }
+    assert_true(tot > 0.0);
+    for (k = 0; k < m; k++) {
+      assert_true(isfinite(u[k]) && u[k] >= 0.0 && u[k] <= 1.0);
+      if (k > 0) assert_true(u[k] >= u[k - 1]);
+      if (!(fabs(u[k] - ref[k] / tot) <= 1e-12))
+        fail_msg("trial %d k %zu: %.17g vs %.17g", trial, k, u[k], ref[k] / tot);
+    }
+  }
+}
+
+/* }==================================================================== */
+
+/* {====================================================================
+** Finding 9: values beyond the documented range
+** ===================================================================== */
+
+/* Given data at |x| from 1e90 to 1e308, when fitted (both solvers), then the answer is
+** OK with a finite rms (|x| <= 1e100) or BSFIT_ERANGE; a finite tangent beyond 1e100
+** is refused at configuration. */
+static void test_fit_huge_coordinates(void **state) {
+  test_rng r = {0x9u};
+  int e10;
+  (void)state;
+  for (e10 = 90; e10 <= 308; e10 += 4) {
+    int sv;
+    for (sv = 0; sv < 2; sv++) {
+      size_t m = 40, k;
+      double pts[80], u[40], s = pow(10.0, e10);
+      bsfit_fit_opts o;
+      bsfit_fitter *f = NULL;
+      bsfit_fit_report rep;
+      bsfit_curve c;
+      bsfit_status st;
+      bsfit_err e;
+      for (k = 0; k < m; k++) {
+        u[k] = (double)k / (double)(m - 1);
+        pts[2 * k] = s * cos(u[k]) * rng_range(&r, 0.9, 1.0);
+        pts[2 * k + 1] = s * sin(u[k]) * rng_range(&r, 0.9, 1.0);
+      }
+      bsfit_fit_opts_init(&o);
+      o.count = 8;
+      o.solver = sv ? BSFIT_SOLVER_QR : BSFIT_SOLVER_CHOLESKY;
+      assert_int_equal(bsfit_fitter_new(&f, &o, NULL, &st), BSFIT_OK);
+      bsfit_curve_init(&c);
+      e = bsfit_fitter_fit(f, pts, m, 2, u, NULL, &c, &rep, NULL, &st);
+      if (s <= BSFIT_COORD_MAX) {
+        assert_int_equal(e, BSFIT_OK);
+        assert_true(isfinite(rep.rms) && isfinite(rep.max) && curve_sound(&c));
+      } else {
+        assert_int_equal(e, BSFIT_ERANGE);
+        assert_int_equal(bsfit_params(pts, m, 2, BSFIT_PARAM_CHORD, 0, u, &st), BSFIT_ERANGE);
+      }
+      bsfit_curve_free(&c);
+      bsfit_fitter_free(f);
+    }
+  }
+  {
+    double T[2] = {1e308, 0.0};
+    bsfit_fit_opts o;
+    bsfit_fitter *f = NULL;
+    bsfit_status st;
+    bsfit_fit_opts_init(&o);
+    o.count = 8;
+    o.tangent_start = T;
+    o.tangent_dim = 2;
+    assert_int_equal(bsfit_fitter_new(&f, &o, NULL, &st), BSFIT_ERANGE);
+    assert_null(f);
+  }
+}
+
+/* Given curves with a weight below DBL_MIN or above 1e100, or a control point beyond
+** 1e100, when built, then they are refused (BSFIT_EWEIGHT, BSFIT_ERANGE); at the limits
+** they are accepted and insertion and elevation return finite, valid curves equal to
+** the original. */
+static void test_curve_ranges(void **state) {
+  const double wbad[4] = {4e-320, 1e-101, 1e101, 1e300};
+  double P[8] = {0, 0, 1, 2, 3, 1, 4, 0}, W[4] = {1, 1, 1, 1}, U[7] = {0, 0, 0, 0.5, 1, 1, 1};
+  bsfit_curve c, d;
+  bsfit_status st;
+  int i;
+  (void)state;
+  bsfit_curve_init(&c);
+  bsfit_curve_init(&d);
+  for (i = 0; i < 4; i++) {
+    W[1] = wbad[i];
+    assert_int_equal(bsfit_curve_new(&c, 2, 2, 4, U, P, W, 0, NULL, &st), BSFIT_EWEIGHT);
+  }
+  W[1] = 1.0;
+  P[3] = 1e300;
+  assert_int_equal(bsfit_curve_new(&c, 2, 2, 4, U, P, W, 0, NULL, &st), BSFIT_ERANGE);
+  /* at the limits: weights 1e-100 and 1e100, coordinates 1e100 */
+  P[3] = 1e100;
+  P[4] = -1e100;
+  W[1] = 1e-100;
+  W[2] = 1e100;
+  assert_int_equal(bsfit_curve_new(&c, 2, 2, 4, U, P, W, 0, NULL, &st), BSFIT_OK);
+  for (i = 0; i < 2; i++) {
+    int k;
+    bsfit_err e = i == 0 ? bsfit_curve_insert_knot(&c, 0.3, 2, &d, &st)
+                         : bsfit_curve_elevate(&c, 3, &d, &st);
+    assert_int_equal(e, BSFIT_OK);
+    assert_true(curve_sound(&d));
+    for (k = 0; k <= 20; k++) {
+      double y1[2], y2[2];
+      ref_eval(&c, k / 20.0, y1);
+      ref_eval(&d, k / 20.0, y2);
+      assert_true(pt_dist(y1, y2, 2) <= 1e-9 * 1e100);
+    }
+  }
+  bsfit_curve_free(&c);
+  bsfit_curve_free(&d);
+}
+
+/* Given random curves whose inner knots crowd an end to within 1e-99..1e-12 (they
+** mirror onto the end), when reversed, then the answer is OK with a valid curve that
+** runs backwards (C_r(a + b - u) = C(u)), or BSFIT_EMULT / BSFIT_ENOTPERIODIC. */
+static void test_reverse_valid(void **state) {
+  test_rng r = {0x99u};
+  int trial, ok = 0, refused = 0;
+  (void)state;
+  for (trial = 0; trial < 400; trial++) {
+    int p = 1 + trial % 4, j;
+    size_t n = (size_t)p + 2 + (size_t)(rng_uniform(&r) * 4), i;
+    double U[32], P[32], a, b;
+    bsfit_curve c, v;
+    bsfit_status st;
+    bsfit_err e;
+    clustered_knots(&r, p, n, 1, 1, U);
+    /* start at 0 and move the first inner knot next to it: representable there, it
+    ** mirrors onto b - 1e-99, which rounds to b */
+    for (i = n + (size_t)p; i + 1 > 0; i--) U[i] -= U[0];
+    U[p + 1] = U[p + 2] * pow(10.0, -rng_range(&r, 2.0, 40.0));
+    for (i = 0; i < 2 * n; i++) P[i] = rng_range(&r, -1, 1);
+    bsfit_curve_init(&c);
+    bsfit_curve_init(&v);
+    e = bsfit_curve_new(&c, p, 2, n, U, P, NULL, 0, NULL, &st);
+    if (e != BSFIT_OK) fail_msg("%s", st.msg);
+    e = bsfit_curve_reverse(&c, &v, &st);
+    if (e != BSFIT_OK) {
+      assert_true(e == BSFIT_EMULT);
+      refused++;
+      bsfit_curve_free(&c);
+      continue;
+    }
+    ok++;
+    assert_true(curve_sound(&v));
+    bsfit_curve_domain(&c, &a, &b);
+    for (j = 0; j <= 20; j++) {
+      double u = a + (b - a) * j / 20.0, y1[2], y2[2];
+      ref_eval(&c, u, y1);
+      /* a + b - u from the nearer end, so that the ends map exactly onto each other */
+      ref_eval(&v, u - a <= b - u ? b - (u - a) : a + (b - u), y2);
+      if (!(pt_dist(y1, y2, 2) <= 1e-9))
+        fail_msg("p %d n %zu u %.17g [%.17g %.17g] U[p+1] %.17g: off by %g", p, n, u, a, b,
+                 U[p + 1], pt_dist(y1, y2, 2));
+    }
+    bsfit_curve_free(&c);
+    bsfit_curve_free(&v);
+  }
+  if (!(ok > 50 && refused > 10)) fail_msg("ok %d refused %d", ok, refused);
+}
+
+/* The moving average of a closed curve with N = p + 1 distinct control points would be
+** a closed curve of degree p + 1 with too few points: refused, for every p. */
+static void test_ma_minimal_periodic(void **state) {
+  int p;
+  (void)state;
+  for (p = 1; p <= 6; p++) {
+    size_t N;
+    for (N = (size_t)p + 1; N <= (size_t)p + 3; N++) {
+      double P[32];
+      size_t i;
+      int k;
+      bsfit_curve c, f;
+      bsfit_status st;
+      for (i = 0; i < 2 * N; i++) P[i] = cos((double)i);
+      bsfit_curve_init(&c);
+      bsfit_curve_init(&f);
+      assert_int_equal(bsfit_curve_new_periodic(&c, p, 2, N, NULL, P, NULL, NULL, &st), 0);
+      for (k = 1; k <= (int)N; k++) {
+        bsfit_err e = bsfit_filter_box_curve(&c, k, &f, &st);
+        if (N < (size_t)p + 2) assert_int_equal(e, BSFIT_ENOTPERIODIC);
+        else {
+          assert_int_equal(e, BSFIT_OK);
+          assert_true(curve_sound(&f));
+        }
+      }
+      bsfit_curve_free(&c);
+      bsfit_curve_free(&f);
+    }
+  }
+}
+
+/* }==================================================================== */
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_filter_any_delta),
       cmocka_unit_test(test_filter_uniform_merge),
       cmocka_unit_test(test_periodic_multiplicity),
       cmocka_unit_test(test_periodic_issue_case),
+      cmocka_unit_test(test_fit_nonfinite_no_free),
+      cmocka_unit_test(test_params_no_underflow),
+      cmocka_unit_test(test_fit_huge_coordinates),
+      cmocka_unit_test(test_curve_ranges),
+      cmocka_unit_test(test_reverse_valid),
+      cmocka_unit_test(test_ma_minimal_periodic),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
