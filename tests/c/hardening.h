@@ -97,6 +97,14 @@ static inline int curve_sound(const bsfit_curve *c) {
   return 1;
 }
 
+/* every one of the n doubles is finite */
+static inline int all_finite(const double *x, size_t n) {
+  size_t i;
+  for (i = 0; i < n; i++)
+    if (!isfinite(x[i])) return 0;
+  return 1;
+}
+
 /* max |a - b| over the coordinates of two points of dimension d */
 static inline double pt_dist(const double *a, const double *b, int d) {
   double m = 0.0;
