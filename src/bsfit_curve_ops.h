@@ -157,10 +157,13 @@ BSFIT_API bsfit_err bsfit_curve_length(const bsfit_curve *c, double a, double b,
 ** @param[in]  P     dim coordinates.
 ** @param[out] u     the foot's parameter, in [a, b] ([a, b) for periodic curves).
 ** @param[out] dist  |C(u) - P|, or NULL.
+** @param[in]  a     allocator of the scratch (the span polynomials of a cubic, 4 dim + 1
+**                   per control point); NULL = realloc.
 ** @return BSFIT_OK, BSFIT_EINVAL (empty curve, P or u NULL), BSFIT_ENONFINITE (P),
 **         any code of bsfit_curve_validate. */
 BSFIT_API bsfit_err bsfit_curve_closest(const bsfit_curve *c, const double *P, double *u,
-                                        double *dist, bsfit_status *st);
+                                        double *dist, const bsfit_allocator *a,
+                                        bsfit_status *st);
 
 /** bsfit_curve_closest for many points at once: the coarse samples (8 per knot span) are
 ** evaluated once, then each point is bracketed by its nearest sample and refined by
@@ -171,10 +174,14 @@ BSFIT_API bsfit_err bsfit_curve_closest(const bsfit_curve *c, const double *P, d
 ** Cost: K = 8 (spans) + 1 samples, indexed once by a k-d tree (O(K log K)), then about
 ** O(log K) per point near the curve to find its nearest sample (a plain scan for small K
 ** or few points), plus Newton per point.
+** @param[in]  a    allocator of the scratch (samples, search tree, span polynomials) and
+**                  the interrupt flag, looked at every 4096 points; NULL = realloc.
 ** @return BSFIT_OK, the codes of bsfit_curve_validate, BSFIT_EINVAL (NULL arrays),
-**         BSFIT_ENONFINITE (a point not finite), BSFIT_ENOMEM. */
+**         BSFIT_ENONFINITE (a point not finite), BSFIT_ENOMEM, BSFIT_EINTR (the entries
+**         before the one interrupted are done). */
 BSFIT_API bsfit_err bsfit_curve_closest_many(const bsfit_curve *c, const double *pts, size_t m,
-                                             double *u, double *dist, bsfit_status *st);
+                                             double *u, double *dist, const bsfit_allocator *a,
+                                             bsfit_status *st);
 
 /** Projects many points, each from its own starting parameter (the fitter's parameter
 ** correction): up to `iters` safeguarded Newton steps on f(u) = C'(u).(C(u) - P), a step
@@ -185,21 +192,25 @@ BSFIT_API bsfit_err bsfit_curve_closest_many(const bsfit_curve *c, const double 
 ** @param[in,out] u     m parameters: starting values in, feet out.
 ** @param[out]    dist  m distances |C(u_i) - P_i|, or NULL.
 ** @param[in]     iters Newton steps per point, >= 0 (0: only clamp/wrap and measure).
+** @param[in]     a     allocator of the scratch (span polynomials of a cubic) and the
+**                      interrupt flag, looked at every 4096 points; NULL = realloc.
 ** @return BSFIT_OK, BSFIT_EINVAL (empty curve, pts or u NULL with m > 0, iters < 0),
-**         BSFIT_EDIM, BSFIT_EDEGREE, BSFIT_ENONFINITE (a point or start; the entries before
-**         it are done). */
+**         BSFIT_EDIM, BSFIT_EDEGREE, BSFIT_ENONFINITE (a point or start; checked before
+**         any is moved), BSFIT_EINTR (the entries before the one interrupted are done). */
 BSFIT_API bsfit_err bsfit_curve_project_many(const bsfit_curve *c, const double *pts, size_t m,
                                              double *u, double *dist, int iters,
-                                             bsfit_status *st);
+                                             const bsfit_allocator *a, bsfit_status *st);
 
 /** k equally spaced samples: open curves at a + (b-a) i/(k-1), i = 0..k-1 (both ends
 ** included); periodic curves at a + (b-a) i/k, i = 0..k-1 (the period [a, b), as C(b) =
 ** C(a) would repeat the first point).
 ** @param[out] out  k*dim doubles, row-major.
+** @param[in]  a    carries the interrupt flag, looked at every 4096 samples (no
+**                  allocation); NULL = never interrupted.
 ** @return BSFIT_OK, BSFIT_EINVAL (empty curve, k < 2, out NULL), BSFIT_EDIM,
-**         BSFIT_EDEGREE. */
+**         BSFIT_EDEGREE, BSFIT_EINTR. */
 BSFIT_API bsfit_err bsfit_curve_sample(const bsfit_curve *c, size_t k, double *out,
-                                       bsfit_status *st);
+                                       const bsfit_allocator *a, bsfit_status *st);
 
 /* }==================================================================== */
 

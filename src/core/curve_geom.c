@@ -115,6 +115,7 @@ typedef struct span_polys {
   double *coef;         /* per span s >= 3: 4 dim coefficients (bsfit__cubic_span_poly) */
   unsigned char *ready; /* per span: converted yet */
   size_t bytes;         /* of the block holding both */
+  const bsfit_allocator *a; /* what coef was allocated with */
 } span_polys;
 
 typedef struct foot_ctx {
@@ -136,11 +137,12 @@ static void foot_init(foot_ctx *F, const bsfit_curve *c, span_polys *poly) {
 
 /* Room for the span polynomials of a polynomial cubic; NULL when c is not one or out of
 ** memory (the basis path then serves). Free with polys_free. */
-static span_polys *polys_new(const bsfit_curve *c, span_polys *sp) {
+static span_polys *polys_new(const bsfit_curve *c, const bsfit_allocator *a, span_polys *sp) {
   size_t n = c->n, d = (size_t)c->dim;
   if (c->degree != 3 || c->weights != NULL || c->bezier) return NULL;
+  sp->a = a;
   sp->bytes = n * 4 * d * sizeof(double) + n;
-  sp->coef = bsfit__alloc(NULL, sp->bytes);
+  sp->coef = bsfit__alloc(a, sp->bytes);
   if (sp->coef == NULL) return NULL;
   sp->ready = (unsigned char *)(sp->coef + n * 4 * d);
   memset(sp->ready, 0, n);
@@ -148,7 +150,7 @@ static span_polys *polys_new(const bsfit_curve *c, span_polys *sp) {
 }
 
 static void polys_free(span_polys *sp) {
-  if (sp) bsfit__free(NULL, sp->coef, sp->bytes);
+  if (sp) bsfit__free(sp->a, sp->coef, sp->bytes);
 }
 
 /* C, C', C'' at u in span s from the span's polynomial (d: the dimension). */
@@ -277,7 +279,7 @@ static double closest_from(foot_ctx *F, double v, double h, double *d2) {
 }
 
 bsfit_err bsfit_curve_closest(const bsfit_curve *c, const double *P, double *u, double *dist,
-                              bsfit_status *st) {
+                              const bsfit_allocator *al, bsfit_status *st) {
   foot_ctx F;
   span_polys sp;
   double a, b, D[3 * 4], best = INFINITY, ubest = 0.0, hbest = 0.0, d2;
@@ -289,7 +291,7 @@ bsfit_err bsfit_curve_closest(const bsfit_curve *c, const double *P, double *u, 
     return bsfit__fail(st, BSFIT_ENONFINITE, "point P is not finite");
   bsfit_curve_domain(c, &a, &b);
   p = (size_t)c->degree;
-  foot_init(&F, c, polys_new(c, &sp));
+  foot_init(&F, c, polys_new(c, al, &sp));
   F.P = P;
   F.lo = a;
   F.hi = b;
@@ -323,10 +325,31 @@ bsfit_err bsfit_curve_closest(const bsfit_curve *c, const double *P, double *u, 
 ** with the samples evaluated once for all the points, and each point's nearest sample
 ** found through a spatial index (nearest_sample.c) that picks exactly the sample the
 ** linear scan of bsfit_curve_closest picks, ties included. */
+/* Newton from each point's nearest sample, looking at the interrupt flag every 4096 */
+static bsfit_err closest_loop(foot_ctx *F, const bsfit__nearest *nn, const double *par,
+                              const double *step, const double *pts, size_t m, double *u,
+                              double *dist, const bsfit_allocator *al, bsfit_status *st) {
+  const bsfit_curve *c = F->c;
+  size_t i, d = (size_t)c->dim;
+  for (i = 0; i < m; i++) {
+    const double *P = pts + i * d;
+    double d2;
+    size_t kb = bsfit__nearest_find(nn, P);
+    if ((i & 4095) == 4095 && bsfit__interrupted(al))
+      return bsfit__fail(st, BSFIT_EINTR, "closest points interrupted at point %zu", i);
+    F->P = P;
+    F->lo = c->periodic ? par[kb] - step[kb] : fmax(par[kb] - step[kb], F->a);
+    F->hi = c->periodic ? par[kb] + step[kb] : fmin(par[kb] + step[kb], F->b);
+    u[i] = bsfit__curve_wrap(c, closest_from(F, par[kb], step[kb], &d2));
+    if (dist) dist[i] = sqrt(d2);
+  }
+  return BSFIT_OK;
+}
+
 bsfit_err bsfit_curve_closest_many(const bsfit_curve *c, const double *pts, size_t m, double *u,
-                                   double *dist, bsfit_status *st) {
+                                   double *dist, const bsfit_allocator *al, bsfit_status *st) {
   foot_ctx F;
-  double a, b, D[3 * 4], *smp, *par, *step;
+  double D[3 * 4], *smp, *par, *step;
   size_t s, i, k, K = 0, p, d, bytes;
   span_polys sp;
   bsfit__nearest nn;
@@ -336,17 +359,16 @@ bsfit_err bsfit_curve_closest_many(const bsfit_curve *c, const double *pts, size
   if (!bsfit__all_finite(pts, m * (size_t)c->dim))
     return bsfit__fail(st, BSFIT_ENONFINITE, "the points contain NaN or Inf");
   if (m == 0) return bsfit__ok(st); /* nothing to sample the curve for */
-  bsfit_curve_domain(c, &a, &b);
   p = (size_t)c->degree;
   d = (size_t)c->dim;
   for (s = p; s < c->n; s++)
     if (c->knots[s + 1] > c->knots[s]) K += CLOSEST_SAMPLES + 1;
   bytes = K * (d + 2) * sizeof(double);
-  smp = bsfit__alloc(NULL, bytes);
+  smp = bsfit__alloc(al, bytes);
   if (smp == NULL) return bsfit__fail(st, BSFIT_ENOMEM, "out of memory for %zu samples", K);
   par = smp + K * d;
   step = par + K;
-  foot_init(&F, c, polys_new(c, &sp));
+  foot_init(&F, c, polys_new(c, al, &sp));
   F.P = pts; /* unused by the sampling below */
   for (s = p, k = 0; s < c->n; s++) {
     double h = (c->knots[s + 1] - c->knots[s]) / CLOSEST_SAMPLES;
@@ -357,30 +379,19 @@ bsfit_err bsfit_curve_closest_many(const bsfit_curve *c, const double *pts, size
       memcpy(smp + k * d, D, d * sizeof(double));
     }
   }
-  e = bsfit__nearest_init(&nn, smp, K, d, m, st);
-  if (e != BSFIT_OK) {
-    polys_free(F.poly);
-    bsfit__free(NULL, smp, bytes);
-    return e;
+  e = bsfit__nearest_init(&nn, smp, K, d, m, al, st);
+  if (e == BSFIT_OK) {
+    e = closest_loop(&F, &nn, par, step, pts, m, u, dist, al, st);
+    bsfit__nearest_free(&nn);
   }
-  for (i = 0; i < m; i++) {
-    const double *P = pts + i * d;
-    double d2;
-    size_t kb = bsfit__nearest_find(&nn, P);
-    F.P = P;
-    F.lo = c->periodic ? par[kb] - step[kb] : fmax(par[kb] - step[kb], a);
-    F.hi = c->periodic ? par[kb] + step[kb] : fmin(par[kb] + step[kb], b);
-    u[i] = bsfit__curve_wrap(c, closest_from(&F, par[kb], step[kb], &d2));
-    if (dist) dist[i] = sqrt(d2);
-  }
-  bsfit__nearest_free(&nn);
   polys_free(F.poly);
-  bsfit__free(NULL, smp, bytes);
-  return bsfit__ok(st);
+  bsfit__free(al, smp, bytes);
+  return e == BSFIT_OK ? bsfit__ok(st) : e;
 }
 
 bsfit_err bsfit_curve_project_many(const bsfit_curve *c, const double *pts, size_t m, double *u,
-                                   double *dist, int iters, bsfit_status *st) {
+                                   double *dist, int iters, const bsfit_allocator *al,
+                                   bsfit_status *st) {
   foot_ctx F;
   double a, b, d2;
   size_t i, d;
@@ -395,8 +406,12 @@ bsfit_err bsfit_curve_project_many(const bsfit_curve *c, const double *pts, size
     if (!bsfit__all_finite(pts + i * d, d) || !isfinite(u[i]))
       return bsfit__fail(st, BSFIT_ENONFINITE, "point %zu or its parameter is not finite", i);
   bsfit_curve_domain(c, &a, &b);
-  foot_init(&F, c, polys_new(c, &sp));
+  foot_init(&F, c, polys_new(c, al, &sp));
   for (i = 0; i < m; i++) {
+    if ((i & 4095) == 4095 && bsfit__interrupted(al)) {
+      polys_free(F.poly);
+      return bsfit__fail(st, BSFIT_EINTR, "projection interrupted at point %zu", i);
+    }
     F.P = pts + i * d;
     /* open: the domain; periodic: one period either side (wrapped at the end) */
     F.lo = c->periodic ? u[i] - (b - a) : a;
@@ -414,7 +429,8 @@ bsfit_err bsfit_curve_project_many(const bsfit_curve *c, const double *pts, size
 ** Sampling
 ** ===================================================================== */
 
-bsfit_err bsfit_curve_sample(const bsfit_curve *c, size_t k, double *out, bsfit_status *st) {
+bsfit_err bsfit_curve_sample(const bsfit_curve *c, size_t k, double *out,
+                             const bsfit_allocator *al, bsfit_status *st) {
   double ub[256], a, b, steps;
   size_t i, j, d;
   bsfit_err e = bsfit__curve_check(c, st);
@@ -427,6 +443,8 @@ bsfit_err bsfit_curve_sample(const bsfit_curve *c, size_t k, double *out, bsfit_
   /* in chunks through the batch evaluator: no allocation */
   for (i = 0; i < k; i += j) {
     size_t nb = k - i < 256 ? k - i : 256;
+    if ((i & 4095) == 0 && i > 0 && bsfit__interrupted(al))
+      return bsfit__fail(st, BSFIT_EINTR, "sampling interrupted at sample %zu", i);
     for (j = 0; j < nb; j++) {
       size_t idx = i + j;
       ub[j] = (!c->periodic && idx == k - 1) ? b : a + (b - a) * ((double)idx / steps);

@@ -75,12 +75,14 @@ typedef struct bsfit__nearest {
   size_t *idx;       /* K: the sample index of each tree position */
   void *block;       /* pts, box and idx in one allocation of `bytes` */
   size_t bytes;
+  bsfit_allocator alloc; /* what block was allocated with */
 } bsfit__nearest;
 
-/* Builds the index for about `queries` look-ups. BSFIT_ENOMEM (nn then needs no free);
-** on success free it with bsfit__nearest_free (NULL-safe, idempotent). */
+/* Builds the index for about `queries` look-ups, its memory from a (NULL = realloc).
+** BSFIT_ENOMEM (nn then needs no free); on success free it with bsfit__nearest_free
+** (NULL-safe, idempotent). */
 bsfit_err bsfit__nearest_init(bsfit__nearest *nn, const double *smp, size_t K, size_t d,
-                              size_t queries, bsfit_status *st);
+                              size_t queries, const bsfit_allocator *a, bsfit_status *st);
 /* The index of the nearest sample to P (d finite doubles); K >= 1. */
 size_t bsfit__nearest_find(const bsfit__nearest *nn, const double *P);
 void bsfit__nearest_free(bsfit__nearest *nn);

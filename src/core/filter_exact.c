@@ -251,6 +251,10 @@ bsfit_err bsfit__filter_exact_open(const bsfit__fview *in, double delta,
     return bsfit__fail(st, BSFIT_ENOMEM, "out of memory filtering %zu control points", in->n);
   }
   antiderivative_knots(in, &x, Wp);
+  if (bsfit__interrupted(a)) { /* each phase below is O(n): look between them */
+    scratch_release(&s);
+    return bsfit__fail(st, BSFIT_EINTR, "filter interrupted");
+  }
   centre(in, ctr);
   antiderivative_points(in, &x, Wp, ctr, J);
   shifted_plus(in, &x, Wp, J, ctr, delta, Kp, Ap);
@@ -267,6 +271,10 @@ bsfit_err bsfit__filter_exact_open(const bsfit__fview *in, double delta,
   if (e == BSFIT_OK && Rm == NULL) {
     bsfit__fspline_free(a, out);
     e = bsfit__fail(st, BSFIT_ENOMEM, "out of memory filtering %zu control points", in->n);
+  }
+  if (e == BSFIT_OK && bsfit__interrupted(a)) {
+    bsfit__fspline_free(a, out);
+    e = bsfit__fail(st, BSFIT_EINTR, "filter interrupted");
   }
   if (e != BSFIT_OK) {
     scratch_release(&s);

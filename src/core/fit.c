@@ -63,7 +63,7 @@ static void carve(bsfit_fitter *f, const size_t off[13]) {
 }
 
 static bsfit_err check_opts(const bsfit_fit_opts *o, bsfit_status *st) {
-  size_t need;
+  size_t need, td;
   if (o == NULL) return bsfit__fail(st, BSFIT_EINVAL, "fit options are NULL");
   if (o->degree < 1 || o->degree > BSFIT_MAX_DEGREE)
     return bsfit__fail(st, BSFIT_EDEGREE, "degree %d out of range 1..%d", o->degree,
@@ -86,10 +86,9 @@ static bsfit_err check_opts(const bsfit_fit_opts *o, bsfit_status *st) {
     return bsfit__fail(st, BSFIT_ENONFINITE, "tangent_start is not finite");
   if (o->tangent_end && !bsfit__all_finite(o->tangent_end, (size_t)o->tangent_dim))
     return bsfit__fail(st, BSFIT_ENONFINITE, "tangent_end is not finite");
-  if ((o->tangent_start &&
-       bsfit__first_out_of_range(o->tangent_start, (size_t)o->tangent_dim) < (size_t)o->tangent_dim) ||
-      (o->tangent_end &&
-       bsfit__first_out_of_range(o->tangent_end, (size_t)o->tangent_dim) < (size_t)o->tangent_dim))
+  td = (size_t)o->tangent_dim;
+  if ((o->tangent_start && bsfit__first_out_of_range(o->tangent_start, td) < td) ||
+      (o->tangent_end && bsfit__first_out_of_range(o->tangent_end, td) < td))
     return bsfit__fail(st, BSFIT_ERANGE, "an end tangent has a coordinate beyond 1e100");
   need = (size_t)(o->tangent_start ? 2 : o->fix_ends ? 1 : 0) +
          (size_t)(o->tangent_end ? 2 : o->fix_ends ? 1 : 0);

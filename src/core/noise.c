@@ -146,7 +146,7 @@ static double robust_scale(double *r, size_t n, int dim) {
 }
 
 bsfit_err bsfit_noise_sigma(const double *pts, size_t m, int dim, int closed, double *sigma,
-                            bsfit_status *st) {
+                            const bsfit_allocator *a, bsfit_status *st) {
   size_t k, i, n, stride = m >= 600 ? 3 : 1;
   double *r, pilot = INFINITY, s2, z2, f;
   size_t bytes = 2 * m * sizeof(double);
@@ -154,7 +154,7 @@ bsfit_err bsfit_noise_sigma(const double *pts, size_t m, int dim, int closed, do
   if (pts == NULL || m < 6) return bsfit__fail(st, BSFIT_ETOOFEW, "noise estimate needs at least 6 points, got %zu", m);
   if (!bsfit__all_finite(pts, m * (size_t)dim))
     return bsfit__fail(st, BSFIT_ENONFINITE, "points contain NaN or Inf");
-  r = bsfit__alloc(NULL, bytes);
+  r = bsfit__alloc(a, bytes);
   if (r == NULL) return bsfit__fail(st, BSFIT_ENOMEM, "out of memory for %zu residuals", m);
   /* A pilot scale from the centred windows alone (on every third point of a long
   ** section: a pilot needs no more): the smallest of theirs (the long one's is biased
@@ -165,7 +165,7 @@ bsfit_err bsfit_noise_sigma(const double *pts, size_t m, int dim, int closed, do
     if (n > 0) pilot = fmin(pilot, robust_scale(r, n, dim));
   }
   if (!(pilot < INFINITY)) {
-    bsfit__free(NULL, r, bytes);
+    bsfit__free(a, r, bytes);
     return bsfit__fail(st, BSFIT_EDEGENERATE, "no window of distinct points to estimate the noise");
   }
   /* Each point's error from the first centred window (in order of preference) whose
@@ -179,6 +179,10 @@ bsfit_err bsfit_noise_sigma(const double *pts, size_t m, int dim, int closed, do
   s2 = pilot * pilot;
   for (n = 0, k = 0; k < m; k++) {
     double best = INFINITY, pick = -1.0, side = INFINITY;
+    if ((k & 4095) == 4095 && bsfit__interrupted(a)) {
+      bsfit__free(a, r, bytes);
+      return bsfit__fail(st, BSFIT_EINTR, "noise estimate interrupted");
+    }
     for (i = 0; i < NKINDS; i++) {
       if (!predict(pts, m, dim, closed, k, &kinds[i], &z2, &f)) continue;
       if (f <= misfit_ok[i] * s2) {
@@ -192,6 +196,6 @@ bsfit_err bsfit_noise_sigma(const double *pts, size_t m, int dim, int closed, do
     if (pick >= 0) r[n++] = sqrt(pick);
   }
   *sigma = robust_scale(r, n, dim);
-  bsfit__free(NULL, r, bytes);
+  bsfit__free(a, r, bytes);
   return bsfit__ok(st);
 }

@@ -29,7 +29,8 @@ static inline void ref_eval(const bsfit_curve *c, double u, double *out) {
   }
   if (u < a) u = a;
   if (u > b) u = b;
-  for (s = n - 1; s > p && !(U[s] <= u && U[s] < U[s + 1]); s--) {}
+  for (s = n - 1; s > p && !(U[s] <= u && U[s] < U[s + 1]); s--) {
+  }
   for (j = 0; j <= p; j++) {
     double w = c->weights ? c->weights[s - p + j] : 1.0;
     for (k = 0; k < d; k++) q[j][k] = w * c->ctrl[(s - p + j) * d + k];
@@ -75,13 +76,18 @@ static inline void clustered_knots(test_rng *r, int p, size_t n, int clamped, in
   size_t nk = n + (size_t)p + 1, i, run = 1;
   for (i = 0; i < nk; i++) {
     double x = rng_uniform(r), step;
-    if (x < 0.25) step = pow(10.0, -rng_range(r, 6.0, 15.0));
-    else step = rng_range(r, 0.1, 1.0);
-    if (i == 0) U[0] = rng_range(r, -1.0, 1.0);
-    else if (clamped && (i <= (size_t)p || i >= n + 1)) U[i] = U[i - 1];
+    if (x < 0.25)
+      step = pow(10.0, -rng_range(r, 6.0, 15.0));
+    else
+      step = rng_range(r, 0.1, 1.0);
+    if (i == 0)
+      U[0] = rng_range(r, -1.0, 1.0);
+    else if (clamped && (i <= (size_t)p || i >= n + 1))
+      U[i] = U[i - 1];
     else if (run < (size_t)maxmult && i != n && i != (size_t)p + 1 && rng_uniform(r) < 0.1)
       U[i] = U[i - 1];
-    else U[i] = U[i - 1] + step;
+    else
+      U[i] = U[i - 1] + step;
     run = (i > 0 && U[i] == U[i - 1]) ? run + 1 : 1;
   }
 }

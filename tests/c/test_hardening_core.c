@@ -124,7 +124,8 @@ static void test_filter_uniform_merge(void **state) {
         bsfit_curve_init(&c);
         bsfit_curve_init(&f1);
         bsfit_curve_init(&f2);
-        if (per) assert_int_equal(bsfit_curve_new_periodic(&c, p, 2, n, NULL, P, NULL, NULL, &st), 0);
+        if (per)
+          assert_int_equal(bsfit_curve_new_periodic(&c, p, 2, n, NULL, P, NULL, NULL, &st), 0);
         else {
           double U[64];
           assert_int_equal(bsfit_knots_uniform(p, n, 0.3, 7.1, U, &st), BSFIT_OK);
@@ -215,7 +216,6 @@ static void test_periodic_issue_case(void **state) {
 
 /* }==================================================================== */
 
-
 /* {====================================================================
 ** Finding 7: both solvers check every input, even with no free unknown
 ** ===================================================================== */
@@ -259,7 +259,8 @@ static void test_fit_nonfinite_no_free(void **state) {
     assert_int_equal(bsfit_fitter_fit(f, pts, m, 2, u, NULL, &c, &rep, NULL, &st), BSFIT_OK);
     for (k = 0; k < m; k++) {
       ref_eval(&c, u[k], y);
-      rms += (y[0] - pts[2 * k]) * (y[0] - pts[2 * k]) + (y[1] - pts[2 * k + 1]) * (y[1] - pts[2 * k + 1]);
+      rms += (y[0] - pts[2 * k]) * (y[0] - pts[2 * k]) +
+             (y[1] - pts[2 * k + 1]) * (y[1] - pts[2 * k + 1]);
     }
     assert_true(fabs(rep.rms - sqrt(rms / (double)m)) <= 1e-12);
     for (i = 0; i < 3; i++) {
@@ -319,7 +320,7 @@ static void test_params_no_underflow(void **state) {
     for (k = 0; k < m; k++)
       for (c = 0; c < (size_t)dim; c++)
         pts[k * (size_t)dim + c] = k > 0 && rng_uniform(&r) < 0.2 ? pts[(k - 1) * (size_t)dim + c]
-                                                                : scale * rng_range(&r, -1, 1);
+                                                                  : scale * rng_range(&r, -1, 1);
     if (trial % 7 == 0) /* the issue's case, scaled: one point apart, the rest equal */
       for (k = 1; k < m; k++)
         for (c = 0; c < (size_t)dim; c++) pts[k * (size_t)dim + c] = 0.0;
@@ -329,7 +330,8 @@ static void test_params_no_underflow(void **state) {
       ref[k] = ref[k - 1] + scaled_chord(pts + (k - 1) * (size_t)dim, pts + k * (size_t)dim, dim,
                                          kind == BSFIT_PARAM_CENTRIPETAL);
     tot = ref[m - 1] + (closed ? scaled_chord(pts + (m - 1) * (size_t)dim, pts, dim,
-                                              kind == BSFIT_PARAM_CENTRIPETAL) : 0.0);
+                                              kind == BSFIT_PARAM_CENTRIPETAL)
+                               : 0.0);
     if (e != BSFIT_OK) {
       assert_true(tot == 0.0 ? e == BSFIT_EDEGENERATE : (closed && e == BSFIT_EINVAL));
       continue;
@@ -432,8 +434,8 @@ static void test_curve_ranges(void **state) {
   assert_int_equal(bsfit_curve_new(&c, 2, 2, 4, U, P, W, 0, NULL, &st), BSFIT_OK);
   for (i = 0; i < 2; i++) {
     int k;
-    bsfit_err e = i == 0 ? bsfit_curve_insert_knot(&c, 0.3, 2, &d, &st)
-                         : bsfit_curve_elevate(&c, 3, &d, &st);
+    bsfit_err e =
+        i == 0 ? bsfit_curve_insert_knot(&c, 0.3, 2, &d, &st) : bsfit_curve_elevate(&c, 3, &d, &st);
     assert_int_equal(e, BSFIT_OK);
     assert_true(curve_sound(&d));
     for (k = 0; k <= 20; k++) {
@@ -515,7 +517,8 @@ static void test_ma_minimal_periodic(void **state) {
       assert_int_equal(bsfit_curve_new_periodic(&c, p, 2, N, NULL, P, NULL, NULL, &st), 0);
       for (k = 1; k <= (int)N; k++) {
         bsfit_err e = bsfit_filter_box_curve(&c, k, &f, &st);
-        if (N < (size_t)p + 2) assert_int_equal(e, BSFIT_ENOTPERIODIC);
+        if (N < (size_t)p + 2)
+          assert_int_equal(e, BSFIT_ENOTPERIODIC);
         else {
           assert_int_equal(e, BSFIT_OK);
           assert_true(curve_sound(&f));
@@ -531,16 +534,11 @@ static void test_ma_minimal_periodic(void **state) {
 
 int main(void) {
   const struct CMUnitTest tests[] = {
-      cmocka_unit_test(test_filter_any_delta),
-      cmocka_unit_test(test_filter_uniform_merge),
-      cmocka_unit_test(test_periodic_multiplicity),
-      cmocka_unit_test(test_periodic_issue_case),
-      cmocka_unit_test(test_fit_nonfinite_no_free),
-      cmocka_unit_test(test_params_no_underflow),
-      cmocka_unit_test(test_fit_huge_coordinates),
-      cmocka_unit_test(test_curve_ranges),
-      cmocka_unit_test(test_reverse_valid),
-      cmocka_unit_test(test_ma_minimal_periodic),
+      cmocka_unit_test(test_filter_any_delta),      cmocka_unit_test(test_filter_uniform_merge),
+      cmocka_unit_test(test_periodic_multiplicity), cmocka_unit_test(test_periodic_issue_case),
+      cmocka_unit_test(test_fit_nonfinite_no_free), cmocka_unit_test(test_params_no_underflow),
+      cmocka_unit_test(test_fit_huge_coordinates),  cmocka_unit_test(test_curve_ranges),
+      cmocka_unit_test(test_reverse_valid),         cmocka_unit_test(test_ma_minimal_periodic),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
