@@ -134,12 +134,14 @@ BSFIT_API bsfit_err bsfit_corners_detect(const double *pts, size_t m, int dim,
 ** @param[in]  w      m positive weights, or NULL.
 ** @param[in]  trust  fraction of the median weight, in [0, 1) (0: every point trusted).
 ** @param[out] u      m parameters.
+** @param[in]  a      allocator of the scratch (about m (dim + 3) doubles); NULL = realloc.
 ** @return BSFIT_OK, the codes of bsfit_params, BSFIT_EWEIGHT (a weight <= 0 or not
 **         finite), BSFIT_EINVAL (trust out of range), BSFIT_EDEGENERATE (fewer than
 **         two trusted points), BSFIT_ENOMEM. */
 BSFIT_API bsfit_err bsfit_params_trusted(const double *pts, size_t m, int dim,
                                          bsfit_param_kind kind, int closed, const double *w,
-                                         double trust, double *u, bsfit_status *st);
+                                         double trust, double *u, const bsfit_allocator *a,
+                                         bsfit_status *st);
 
 /** Makes parameters agree with corners that lie between samples.
 **

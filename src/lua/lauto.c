@@ -36,8 +36,11 @@ static int auto_params_trusted(lua_State *L) {
   luaL_argcheck(L, trust >= 0 && trust < 1, 3, "field 'trust' must be in [0, 1)");
   bsfit__lua_checkfinite(L, 1, P);
   u = bsfit__lua_newvector(L, P->n);
-  e = bsfit_params_trusted(P->xy, P->n, (int)P->dim, (bsfit_param_kind)kind, closed, w, trust,
-                           u->x, &st);
+  {
+    bsfit_allocator a = bsfit__lua_allocator(L);
+    e = bsfit_params_trusted(P->xy, P->n, (int)P->dim, (bsfit_param_kind)kind, closed, w, trust,
+                             u->x, &a, &st);
+  }
   return bsfit__lua_result(L, e, &st, 1, 1);
 }
 

@@ -21,7 +21,7 @@ static void test_trusted_params_without_weights_are_chord_params(void **state) {
   (void)state;
   make_shape(&r, SHAPE_ELLIPSE, 200, 1, 1e-3, xy);
   assert_int_equal(bsfit_params(xy, 200, 2, BSFIT_PARAM_CHORD, 1, u1, NULL), BSFIT_OK);
-  assert_int_equal(bsfit_params_trusted(xy, 200, 2, BSFIT_PARAM_CHORD, 1, NULL, 0.1, u2, NULL), BSFIT_OK);
+  assert_int_equal(bsfit_params_trusted(xy, 200, 2, BSFIT_PARAM_CHORD, 1, NULL, 0.1, u2, NULL, NULL), BSFIT_OK);
   for (i = 0; i < 200; i++) assert_float_equal(u1[i], u2[i], 0.0);
 }
 
@@ -44,7 +44,7 @@ static void test_outlier_does_not_stretch_neighbours(void **state) {
       clean[2 * j + 1] = xy[2 * i + 1];
       j++;
     }
-  assert_int_equal(bsfit_params_trusted(xy, 100, 2, BSFIT_PARAM_CHORD, 1, w, 0.1, u, NULL), BSFIT_OK);
+  assert_int_equal(bsfit_params_trusted(xy, 100, 2, BSFIT_PARAM_CHORD, 1, w, 0.1, u, NULL, NULL), BSFIT_OK);
   assert_int_equal(bsfit_params(clean, 99, 2, BSFIT_PARAM_CHORD, 1, uc, NULL), BSFIT_OK);
   for (i = 0, j = 0; i < 100; i++) {
     if (i == k) continue;
@@ -57,7 +57,7 @@ static void test_outlier_does_not_stretch_neighbours(void **state) {
   w[k] = 1.0;
   w[0] = 1e-4;
   first = 0;
-  assert_int_equal(bsfit_params_trusted(xy, 100, 2, BSFIT_PARAM_CHORD, 1, w, 0.1, u, NULL), BSFIT_OK);
+  assert_int_equal(bsfit_params_trusted(xy, 100, 2, BSFIT_PARAM_CHORD, 1, w, 0.1, u, NULL, NULL), BSFIT_OK);
   assert_float_equal(u[first], 0.0, 0.0);
   for (i = 1; i < 100; i++) assert_true(u[i] >= u[i - 1] && u[i] < 1.0);
 }
@@ -66,13 +66,13 @@ static void test_trusted_params_errors(void **state) {
   double xy[12] = {0, 0, 1, 0, 1, 1, 0, 1, 0.5, 0.5, 0.2, 0.1}, w[6] = {1, 1, 1, 1, 1, 1}, u[6];
   bsfit_status st;
   (void)state;
-  assert_int_equal(bsfit_params_trusted(xy, 6, 2, BSFIT_PARAM_CHORD, 1, w, 1.5, u, &st), BSFIT_EINVAL);
+  assert_int_equal(bsfit_params_trusted(xy, 6, 2, BSFIT_PARAM_CHORD, 1, w, 1.5, u, NULL, &st), BSFIT_EINVAL);
   w[2] = 0.0;
-  assert_int_equal(bsfit_params_trusted(xy, 6, 2, BSFIT_PARAM_CHORD, 1, w, 0.1, u, &st), BSFIT_EWEIGHT);
+  assert_int_equal(bsfit_params_trusted(xy, 6, 2, BSFIT_PARAM_CHORD, 1, w, 0.1, u, NULL, &st), BSFIT_EWEIGHT);
   w[2] = NAN;
-  assert_int_equal(bsfit_params_trusted(xy, 6, 2, BSFIT_PARAM_CHORD, 1, w, 0.1, u, &st), BSFIT_EWEIGHT);
+  assert_int_equal(bsfit_params_trusted(xy, 6, 2, BSFIT_PARAM_CHORD, 1, w, 0.1, u, NULL, &st), BSFIT_EWEIGHT);
   w[2] = 1.0;
-  assert_int_equal(bsfit_params_trusted(NULL, 6, 2, BSFIT_PARAM_CHORD, 1, w, 0.5, u, &st), BSFIT_EINVAL);
+  assert_int_equal(bsfit_params_trusted(NULL, 6, 2, BSFIT_PARAM_CHORD, 1, w, 0.5, u, NULL, &st), BSFIT_EINVAL);
   assert_true(strlen(st.msg) > 0);
 }
 
