@@ -330,13 +330,24 @@ bsfit_err bsfit_surface_derivs(const bsfit_surface *s, double u, double v, int k
 
 bsfit_err bsfit_surface_normal(const bsfit_surface *s, double u, double v, double *out,
                                bsfit_status *st) {
-  double D[4 * 3], n[3], len, scale;
-  const double *Su = D + 2 * 3, *Sv = D + 1 * 3; /* (1,0) and (0,1) with k = 1 */
+  double D[4 * 3], n[3], len, scale, mu = 0.0, mv = 0.0;
+  double *Su = D + 2 * 3, *Sv = D + 1 * 3; /* (1,0) and (0,1) with k = 1 */
   bsfit_err e;
+  int q;
   if (s->dim != 3)
     return bsfit__fail(st, BSFIT_EDIM, "normals need a 3D surface, this one has dim %d", s->dim);
   e = bsfit_surface_derivs(s, u, v, 1, D, st);
   if (e != BSFIT_OK) return e;
+  /* the direction is all we need: scaled to components <= 1, the products below can
+  ** neither overflow (derivatives of 1e115 over tiny spans) nor underflow */
+  for (q = 0; q < 3; q++) {
+    mu = fmax(mu, fabs(Su[q]));
+    mv = fmax(mv, fabs(Sv[q]));
+  }
+  for (q = 0; q < 3 && mu > 0 && mv > 0; q++) {
+    Su[q] /= mu;
+    Sv[q] /= mv;
+  }
   n[0] = Su[1] * Sv[2] - Su[2] * Sv[1];
   n[1] = Su[2] * Sv[0] - Su[0] * Sv[2];
   n[2] = Su[0] * Sv[1] - Su[1] * Sv[0];

@@ -323,11 +323,132 @@ static void test_measuring_ops(void **state) {
 
 /* }==================================================================== */
 
+/* {====================================================================
+** Surfaces
+** ===================================================================== */
+
+/* S(u, v) from the definition: de Boor along v for each of the (pu + 1) rows of the
+** u span, then along u (homogeneous coordinates, wrapped in a 1 x n curve view). */
+static void ref_surface(const bsfit_surface *s, double u, double v, double *out) {
+  size_t pu = (size_t)s->degree_u, pv = (size_t)s->degree_v, d = (size_t)s->dim, i, j, k, su;
+  double rowpts[REF_MAXP + 1][5], U[64], Pt[64 * 5], W[64];
+  bsfit_curve col, row;
+  for (su = s->nu - 1; su > pu && !(s->knots_u[su] <= u && s->knots_u[su] < s->knots_u[su + 1]);
+       su--) {
+  }
+  for (i = 0; i <= pu; i++) { /* row su - pu + i, as a curve in v, evaluated at v */
+    size_t r = su - pu + i;
+    for (j = 0; j < s->nv; j++) {
+      double w = s->weights ? s->weights[r * s->nv + j] : 1.0;
+      for (k = 0; k < d; k++) Pt[j * d + k] = s->ctrl[(r * s->nv + j) * d + k];
+      W[j] = w;
+    }
+    bsfit_curve_init(&row);
+    row.degree = (int)pv;
+    row.dim = (int)d;
+    row.n = s->nv;
+    row.knots = (double *)s->knots_v;
+    row.ctrl = Pt;
+    row.weights = s->weights ? W : NULL;
+    ref_eval(&row, v, rowpts[i]);
+    /* the homogeneous weight of the row at v: the same evaluation of the weights alone */
+    if (s->weights) {
+      double one[64];
+      for (j = 0; j < s->nv; j++) one[j] = W[j];
+      row.dim = 1;
+      row.ctrl = one;
+      row.weights = NULL;
+      ref_eval(&row, v, &rowpts[i][d]);
+    } else {
+      rowpts[i][d] = 1.0;
+    }
+  }
+  /* along u: the rows' points and weights as a rational curve on knots_u */
+  for (i = 0; i <= pu; i++) {
+    for (k = 0; k < d; k++) Pt[i * d + k] = rowpts[i][k];
+    W[i] = rowpts[i][d];
+  }
+  bsfit_curve_init(&col);
+  col.degree = (int)pu;
+  col.dim = (int)d;
+  col.n = pu + 1;
+  for (i = 0; i < 2 * pu + 2; i++) U[i] = s->knots_u[su - pu + i];
+  col.knots = U;
+  col.ctrl = Pt;
+  col.weights = s->weights ? W : NULL;
+  ref_eval(&col, u, out);
+}
+
+/* Given random surfaces (degrees 1-4 each way, knots clustered down to 1e-15, rational
+** or not, coordinates 1e-100..1e99), then: points equal the reference; derivatives and
+** normals are finite or an error; grids are finite; the exact filter of a polynomial
+** surface is valid or refused; JSON round-trips exactly. */
+static void test_surface_ops(void **state) {
+  test_rng r = {0x5u};
+  int i;
+  (void)state;
+  for (i = 0; i < 150; i++) {
+    int pu = 1 + i % 4, pv = 1 + (i / 4) % 4, rational = (i / 16) % 2;
+    size_t nu = (size_t)pu + 1 + (size_t)(rng_uniform(&r) * 4),
+           nv = (size_t)pv + 1 + (size_t)(rng_uniform(&r) * 4), k;
+    double U[32], V[32], P[3 * 64], W[64], scale = pow(10.0, rng_range(&r, -100.0, 99.0));
+    double ua, ub, va, vb, D[4 * 3], grid[5 * 5 * 3], y1[3], y2[3], tol;
+    bsfit_surface s, f;
+    bsfit_status st;
+    bsfit_err e;
+    char *js = NULL;
+    size_t jlen;
+    clustered_knots(&r, pu, nu, 1, pu, U);
+    clustered_knots(&r, pv, nv, 1, pv, V);
+    for (k = 0; k < nu * nv * 3; k++) P[k] = scale * rng_range(&r, -1, 1);
+    for (k = 0; k < nu * nv; k++) W[k] = rng_range(&r, 0.3, 3.0);
+    bsfit_surface_init(&s);
+    bsfit_surface_init(&f);
+    assert_int_equal(
+        bsfit_surface_new(&s, pu, pv, 3, nu, nv, U, V, P, rational ? W : NULL, NULL, &st),
+        BSFIT_OK);
+    bsfit_surface_domain(&s, &ua, &ub, &va, &vb);
+    tol = scale * 1e-9;
+    for (k = 0; k < 20; k++) {
+      double u = ua + (ub - ua) * rng_uniform(&r), v = va + (vb - va) * rng_uniform(&r);
+      assert_int_equal(bsfit_surface_eval(&s, u, v, y1, &st), BSFIT_OK);
+      ref_surface(&s, u, v, y2);
+      if (!(pt_dist(y1, y2, 3) <= tol))
+        fail_msg("surface %d: S(%g, %g) off by %g", i, u, v, pt_dist(y1, y2, 3));
+      e = bsfit_surface_derivs(&s, u, v, 1, D, &st);
+      assert_true(e == BSFIT_OK ? all_finite(D, 12) : e == BSFIT_ERANGE);
+      e = bsfit_surface_normal(&s, u, v, y1, &st);
+      if (e == BSFIT_OK)
+        assert_true(all_finite(y1, 3) && fabs(hypot(hypot(y1[0], y1[1]), y1[2]) - 1) < 1e-12);
+      else
+        assert_true(e == BSFIT_ERANGE || e == BSFIT_EDEGENERATE);
+    }
+    assert_int_equal(bsfit_surface_sample_grid(&s, 5, 5, grid, &st), BSFIT_OK);
+    assert_true(all_finite(grid, 75));
+    if (!rational) {
+      e = bsfit_filter_box_surface_delta(&s, (ub - ua) * 0.1, (vb - va) * 0.1, &f, &st);
+      if (e == BSFIT_OK)
+        assert_int_equal(bsfit_surface_validate(&f, &st), BSFIT_OK);
+      else
+        assert_true(e < 0 && strlen(st.msg) > 0);
+    }
+    assert_int_equal(bsfit_surface_to_json(&s, &js, &jlen, NULL, &st), BSFIT_OK);
+    assert_int_equal(bsfit_surface_from_json(js, jlen, &f, NULL, &st), BSFIT_OK);
+    assert_memory_equal(f.ctrl, s.ctrl, nu * nv * 3 * sizeof(double));
+    free(js);
+    bsfit_surface_free(&s);
+    bsfit_surface_free(&f);
+  }
+}
+
+/* }==================================================================== */
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_elevate_issue_cases),
       cmocka_unit_test(test_shape_preserving_ops),
       cmocka_unit_test(test_measuring_ops),
+      cmocka_unit_test(test_surface_ops),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
