@@ -279,9 +279,10 @@ BSFIT_API int bsfit_blas_single_thread(void);
 ** @param[out] rep       diagnostics, or NULL (then the rcond estimate is skipped).
 ** @param[out] residuals m distances |Q_k - C(ū_k)|, or NULL.
 ** @return BSFIT_OK; BSFIT_EINVAL (NULL arrays); BSFIT_EDIM; BSFIT_ETOOFEW (m < count);
-**         BSFIT_ENONFINITE (NaN/Inf in a point or parameter: both solvers check every one,
-**         even with no free unknown); BSFIT_ERANGE (a coordinate beyond
-**         BSFIT_COORD_MAX, whose squared residual could overflow); BSFIT_EWEIGHT (a weight
+**         BSFIT_ENONFINITE (NaN/Inf in a point or parameter: both solvers find every one,
+**         even with no free unknown); BSFIT_ERANGE (data beyond BSFIT_COORD_MAX that
+**         push a control point beyond it or make the squared residuals overflow; the
+**         message names the first point beyond the range); BSFIT_EWEIGHT (a weight
 **         zero, negative, subnormal or not finite); BSFIT_EDEGENERATE (all points coincident);
 **         any code of bsfit_knots_place except BSFIT_EEMPTYSPAN (rule-based knots);
 **         BSFIT_EEMPTYSPAN (the normal matrix is not positive definite and some span holds

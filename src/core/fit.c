@@ -337,22 +337,14 @@ static bsfit_err open_solve(bsfit_fitter *f, const double *pts, size_t m, int di
 ** The fit
 ** ======================================================================= */
 
-/* Every point and parameter, checked here for both solvers alike: the sums of the
-** assembly reveal a NaN only where a row reaches a free unknown, and with fixed ends
-** and no free unknown at all nothing would (QR returned OK with a NaN rms). Coordinates
-** beyond BSFIT_COORD_MAX are refused: their squared residuals would overflow. */
-static bsfit_err check_fit_values(const double *pts, size_t m, int dim, const double *u,
-                                  bsfit_status *st) {
+/* The first point with a coordinate beyond BSFIT_COORD_MAX, named; BSFIT_OK if none.
+** Only called once a fit has shown the sign of one (the scan costs a pass over the data,
+** a quarter of a Cholesky fit's time). */
+static bsfit_err range_error(const double *pts, size_t m, int dim, bsfit_status *st) {
   size_t d = (size_t)dim, k = bsfit__first_out_of_range(pts, m * d);
-  if (k < m * d && !isfinite(pts[k]))
-    return bsfit__fail(st, BSFIT_ENONFINITE, "point %zu has a NaN or Inf coordinate", k / d);
-  if (k < m * d)
-    return bsfit__fail(st, BSFIT_ERANGE, "point %zu has a coordinate %g beyond 1e100", k / d,
-                       pts[k]);
-  for (k = 0; k < m; k++)
-    if (!isfinite(u[k]))
-      return bsfit__fail(st, BSFIT_ENONFINITE, "parameter %zu is not finite", k);
-  return BSFIT_OK;
+  if (k == m * d) return BSFIT_OK;
+  return bsfit__fail(st, BSFIT_ERANGE, "point %zu has a coordinate %g beyond 1e100", k / d,
+                     pts[k]);
 }
 
 static bsfit_err check_fit_args(const bsfit_fitter *f, const double *pts, size_t m, int dim,
@@ -366,7 +358,7 @@ static bsfit_err check_fit_args(const bsfit_fitter *f, const double *pts, size_t
   if (m < f->count)
     return bsfit__fail(st, BSFIT_ETOOFEW, "%zu points are fewer than %zu control points", m,
                        f->count);
-  return check_fit_values(pts, m, dim, u, st);
+  return BSFIT_OK;
 }
 
 /* Knots of this fit from the rule (fixed knots were loaded at configuration). */
@@ -446,9 +438,17 @@ static bsfit_err assemble_checked(bsfit_fitter *f, const double *pts, size_t m, 
   return BSFIT_OK;
 }
 
-static bsfit_err solution_finite(const bsfit_fitter *f, int dim, const bsfit_curve *out,
-                                 bsfit_status *st) {
-  if (bsfit__all_finite(out->ctrl, f->nraw * (size_t)dim)) return BSFIT_OK;
+/* The control points must be finite and, so that the curve is valid, within
+** BSFIT_COORD_MAX: beyond it the data were (points beyond 1e100 are named). */
+static bsfit_err solution_finite(const bsfit_fitter *f, const double *pts, size_t m, int dim,
+                                 const bsfit_curve *out, bsfit_status *st) {
+  size_t nc = f->nraw * (size_t)dim, k = bsfit__first_out_of_range(out->ctrl, nc);
+  if (k < nc && bsfit__all_finite(out->ctrl, nc)) {
+    if (range_error(pts, m, dim, st) != BSFIT_OK) return BSFIT_ERANGE;
+    return bsfit__fail(st, BSFIT_ERANGE, "control point %zu of the fit is %g, beyond 1e100",
+                       k / (size_t)dim, out->ctrl[k]);
+  }
+  if (k == nc) return BSFIT_OK;
   return bsfit__fail(st, BSFIT_ESINGULAR, "the solution is not finite: the normal matrix is "
                      "numerically singular");
 }
@@ -470,7 +470,7 @@ static bsfit_err fit_cholesky(bsfit_fitter *f, const double *pts, size_t m, int 
                   : open_solve(f, pts, m, dim, out->ctrl, rc, st);
   if (e != BSFIT_OK) return empty_span_error(f, e, st, NULL, NULL);
   wrap_ctrl(f, dim, out);
-  return solution_finite(f, dim, out, st);
+  return solution_finite(f, pts, m, dim, out, st);
 }
 
 /* QR of the weighted rows (fit_qr.c): no normal matrix. */
@@ -479,6 +479,10 @@ static bsfit_err fit_qr(bsfit_fitter *f, const double *pts, size_t m, int dim, c
   bsfit__fixed_set fx;
   int badw;
   bsfit_err e;
+  /* every point and parameter, as the Cholesky path's sums check them: rows that reach
+  ** no free unknown (fixed ends, no free control point) leave no trace in R */
+  if (!bsfit__all_finite(pts, m * (size_t)dim) || !bsfit__all_finite(u, m))
+    return input_error(pts, m, dim, u, w, st);
   bsfit__fit_fixed(f, pts, m, dim, &fx); /* periodic fits have no constraints: lo..hi all */
   e = bsfit__qr_factor(f, pts, m, dim, u, w, &fx, &badw, st);
   if (e != BSFIT_OK) return e;
@@ -489,7 +493,7 @@ static bsfit_err fit_qr(bsfit_fitter *f, const double *pts, size_t m, int dim, c
   if (e == BSFIT_OK) e = bsfit__qr_solve(f, dim, &fx, out->ctrl, rc, st);
   if (e != BSFIT_OK) return empty_span_error(f, e, st, NULL, NULL);
   wrap_ctrl(f, dim, out);
-  return solution_finite(f, dim, out, st);
+  return solution_finite(f, pts, m, dim, out, st);
 }
 
 /* BSFIT_SOLVER_AUTO: does the Cholesky result call for QR? */
@@ -519,6 +523,11 @@ static bsfit_err fit_body(bsfit_fitter *f, const double *pts, size_t m, int dim,
   }
   if (rep == NULL && res == NULL) return bsfit__ok(st); /* nobody reads the residuals */
   bsfit__fit_residuals(f, out->ctrl, pts, m, dim, u, w, res, &rms, &max, &imax);
+  if (!isfinite(rms) || !isfinite(max)) { /* squares of coordinates beyond ~1e154 */
+    if (range_error(pts, m, dim, st) == BSFIT_OK)
+      (void)bsfit__fail(st, BSFIT_ERANGE, "the residuals overflow");
+    return BSFIT_ERANGE;
+  }
   if (rep) {
     rep->rms = rms;
     rep->max = max;
