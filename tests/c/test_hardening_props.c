@@ -48,9 +48,12 @@ static void random_curve(gen *g, int i, bsfit_curve *c) {
     g->W[k] = (i / 84) % 2 ? pow(10.0, rng_range(&g->r, -3.0, 3.0)) : rng_range(&g->r, 0.2, 5.0);
   bsfit_curve_init(c);
   if (periodic) {
-    /* period knots with clusters, multiplicity <= p - 1 (the seam included) */
-    clustered_knots(&g->r, p, N - (size_t)p, 0, p > 1 ? p - 1 : 1, g->U);
-    e = bsfit_curve_new_periodic(c, p, 2, N, g->U, g->P, rational ? g->W : NULL, NULL, &st);
+    /* period knots with clusters, multiplicity <= p inside; drawn again while the seam
+    ** (the runs at both ends together) passes p, which the library refuses */
+    do {
+      clustered_knots(&g->r, p, N - (size_t)p, 0, p, g->U);
+      e = bsfit_curve_new_periodic(c, p, 2, N, g->U, g->P, rational ? g->W : NULL, NULL, &st);
+    } while (e == BSFIT_EMULT);
   } else {
     clustered_knots(&g->r, p, n, clamped, p, g->U);
     e = bsfit_curve_new(c, p, 2, n, g->U, g->P, rational ? g->W : NULL, 0, NULL, &st);
@@ -281,13 +284,17 @@ static void test_measuring_ops(void **state) {
     if (!c.periodic) {
       ref_eval(&c, a, y);
       ref_eval(&c, b, Q);
-      assert_true(len >= hypot(Q[0] - y[0], Q[1] - y[1]) * (1 - 1e-9));
+      /* near a cusp |C'| has a kink and the adaptive quadrature stops at 2^12 pieces a
+      ** span with a few 1e-9 (bsfit_curve_length's documented limit) */
+      if (!(len >= hypot(Q[0] - y[0], Q[1] - y[1]) * (1 - 1e-7)))
+        fail_msg("length, curve %d (p=%d n=%zu%s): %.17g below the chord %.17g", i, c.degree, c.n,
+                 c.weights ? " rational" : "", len, hypot(Q[0] - y[0], Q[1] - y[1]));
     }
     if (!c.weights) {
       double poly = 0.0;
       for (k = 1; k < c.n; k++)
         poly += hypot(c.ctrl[2 * k] - c.ctrl[2 * k - 2], c.ctrl[2 * k + 1] - c.ctrl[2 * k - 1]);
-      assert_true(len <= poly * (1 + 1e-9) + 1e-300);
+      assert_true(len <= poly * (1 + 1e-7) + 1e-300);
     }
     /* closest: a random point near the curve, against NPAR points of the curve */
     Q[0] = smp[0] + ctrl_scale(&c) * rng_range(&g.r, -0.3, 0.3);
