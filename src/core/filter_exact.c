@@ -319,7 +319,12 @@ static bsfit_err unwrap(const bsfit__fview *in, size_t N, size_t M, scratch *s,
   long i0 = -(long)(M * N);
   double *U = scratch_get(s, n + p + 1, 1), *P = scratch_get(s, n, d);
   if (U == NULL || P == NULL) return BSFIT_ENOMEM;
-  for (i = 0; i < n + p + 1; i++) U[i] = periodic_knot(in, N, i0 - (long)p + (long)i);
+  for (i = 0; i < n + p + 1; i++) {
+    U[i] = periodic_knot(in, N, i0 - (long)p + (long)i);
+    /* t + k T rounds: a knot an ulp from the seam can land past the next period's
+    ** first one; keep the vector sorted (unwrapped_ok then checks the runs) */
+    if (i > 0 && U[i] < U[i - 1]) U[i] = U[i - 1];
+  }
   for (i = 0; i < n; i++) {
     long j = (i0 + (long)i) % (long)N;
     memcpy(P + i * d, in->P + (size_t)(j < 0 ? j + (long)N : j) * d, d * sizeof(double));
@@ -363,6 +368,17 @@ static bsfit_err read_period(const bsfit__fspline *f, double a, double T, double
   return BSFIT_OK;
 }
 
+/* Knots t + k T of the unwrapped periods round: a cluster of knots closer than that
+** rounding can collapse into a run longer than degree + 1, which no spline has. */
+static int unwrapped_ok(const bsfit__fview *open) {
+  size_t i, run = 1, nk = open->n + (size_t)open->p + 1;
+  for (i = 1; i < nk; i++) {
+    run = open->U[i] == open->U[i - 1] ? run + 1 : 1;
+    if (run > (size_t)open->p + 1) return 0;
+  }
+  return 1;
+}
+
 bsfit_err bsfit__filter_exact_periodic(const bsfit__fview *in, double delta,
                                        const bsfit_allocator *a, bsfit__fspline *out,
                                        bsfit_status *st) {
@@ -377,6 +393,13 @@ bsfit_err bsfit__filter_exact_periodic(const bsfit__fview *in, double delta,
   if (unwrap(in, N, M, &s, &open) != BSFIT_OK) {
     scratch_release(&s);
     return bsfit__fail(st, BSFIT_ENOMEM, "out of memory unwrapping a closed curve");
+  }
+  if (!unwrapped_ok(&open)) {
+    scratch_release(&s);
+    return bsfit__fail(st, BSFIT_EMULT,
+                       "knots of this closed curve are closer than the rounding of its "
+                       "periods shifted by up to %g: they would merge",
+                       (double)M * T);
   }
   e = bsfit__filter_exact_open(&open, delta, a, &f, st);
   if (e == BSFIT_OK) {
