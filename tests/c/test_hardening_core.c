@@ -561,6 +561,92 @@ static void test_ma_minimal_periodic(void **state) {
 
 /* }==================================================================== */
 
+/* {====================================================================
+** Geometry kernels at every scale
+** ===================================================================== */
+
+/* Given random polylines of dimension 2 and 3 at scales 1e-320..1e100 (subnormal
+** included), with repeated and collinear points, when measured by the geometry kernels,
+** then an OK answer is finite where it promises finiteness (radii may be +Inf for
+** collinear triples: never NaN), weights are finite and >= their floor, angles in
+** [0, 180], and the other answers are error codes. */
+static void test_geometry_any_scale(void **state) {
+  test_rng r = {0x6e0u};
+  int trial;
+  (void)state;
+  for (trial = 0; trial < 2000; trial++) {
+    int dim = 2 + trial % 2, closed = (trial / 2) % 2;
+    size_t m = 3 + (size_t)(rng_uniform(&r) * 30), k;
+    double scale = pow(10.0, rng_range(&r, -320.0, 100.0)), pts[3 * 40], out[40], d;
+    size_t cnt;
+    bsfit_status st;
+    bsfit_err e;
+    for (k = 0; k < m * (size_t)dim; k++) {
+      double x = rng_uniform(&r);
+      pts[k] = x < 0.15 && k >= (size_t)dim ? pts[k - (size_t)dim]
+               : x < 0.25                   ? 0.0
+                                            : scale * rng_range(&r, -1, 1);
+    }
+    e = bsfit_geom_circumradius(pts, m, dim, closed, trial % 3 == 0, out, &st);
+    for (k = 0; e == BSFIT_OK && k < m; k++) assert_true(!isnan(out[k]) && out[k] >= 0);
+    e = bsfit_weights_circumradius(pts, m, dim, closed, trial % 3 == 0, out, &st);
+    for (k = 0; e == BSFIT_OK && k < m; k++)
+      if (!(isfinite(out[k]) && out[k] >= 1.0)) fail_msg("circumradius weight %g", out[k]);
+    e = bsfit_geom_angles(pts, m, dim, closed, out, &st);
+    for (k = 0; e == BSFIT_OK && k < m; k++) assert_true(out[k] >= 0.0 && out[k] <= 180.0);
+    e = bsfit_weights_turning(pts, m, dim, closed, out, &st);
+    for (k = 0; e == BSFIT_OK && k < m; k++)
+      if (!(isfinite(out[k]) && out[k] >= 1.0)) fail_msg("turning weight %g", out[k]);
+    e = bsfit_weights_spacing(pts, m, dim, closed, out, &st);
+    for (k = 0; e == BSFIT_OK && k < m; k++)
+      if (!(isfinite(out[k]) && out[k] >= BSFIT_GEOM_SPACING_FLOOR))
+        fail_msg("spacing weight %g", out[k]);
+    (void)bsfit_geom_inflections(pts, m, dim, closed, &cnt, &st);
+    e = bsfit_geom_line_distance(pts, pts + dim, pts + 2 * dim, dim, &d, &st);
+    if (e == BSFIT_OK) assert_true(isfinite(d) && d >= 0);
+    e = bsfit_geom_tangent_project(pts, pts + dim, pts + 2 * dim, dim, out, &st);
+    if (e == BSFIT_OK) assert_true(all_finite(out, (size_t)dim));
+  }
+}
+
+/* The kernels measure shapes: scaled by 2^e (exact), a polyline keeps its angles,
+** weights and inflections bit for bit and its radii scale by 2^e, for e from -960 to 330
+** (squares of differences underflowed below about 1e-154 and overflowed above 1e154). */
+static void test_geometry_scale_invariant(void **state) {
+  test_rng r = {0x6e1u};
+  int trial;
+  (void)state;
+  for (trial = 0; trial < 400; trial++) {
+    int dim = 2 + trial % 2, closed = (trial / 2) % 2, e = (int)rng_range(&r, -960.0, 330.0);
+    size_t m = 3 + (size_t)(rng_uniform(&r) * 30), k, c1, c2;
+    double P[3 * 40], S[3 * 40], a1[40], a2[40];
+    bsfit_status st;
+    for (k = 0; k < m * (size_t)dim; k++) {
+      P[k] = floor(rng_range(&r, -1024.0, 1024.0)) / 1024.0; /* exact multiples of 2^-10 */
+      S[k] = ldexp(P[k], e);
+    }
+    if (ldexp(1.0, e) > BSFIT_COORD_MAX) continue;
+    assert_int_equal(bsfit_geom_circumradius(P, m, dim, closed, 1, a1, &st), BSFIT_OK);
+    assert_int_equal(bsfit_geom_circumradius(S, m, dim, closed, 1, a2, &st), BSFIT_OK);
+    for (k = 0; k < m; k++)
+      if (!(a2[k] == ldexp(a1[k], e))) fail_msg("radius %zu: %g vs %g * 2^%d", k, a2[k], a1[k], e);
+    assert_int_equal(bsfit_weights_circumradius(P, m, dim, closed, 0, a1, &st), BSFIT_OK);
+    assert_int_equal(bsfit_weights_circumradius(S, m, dim, closed, 0, a2, &st), BSFIT_OK);
+    assert_memory_equal(a1, a2, m * sizeof(double));
+    assert_int_equal(bsfit_geom_angles(P, m, dim, closed, a1, &st), BSFIT_OK);
+    assert_int_equal(bsfit_geom_angles(S, m, dim, closed, a2, &st), BSFIT_OK);
+    assert_memory_equal(a1, a2, m * sizeof(double));
+    assert_int_equal(bsfit_weights_spacing(P, m, dim, closed, a1, &st), BSFIT_OK);
+    assert_int_equal(bsfit_weights_spacing(S, m, dim, closed, a2, &st), BSFIT_OK);
+    for (k = 0; k < m; k++) assert_true(fabs(a1[k] - a2[k]) <= 1e-14 * a1[k]);
+    assert_int_equal(bsfit_geom_inflections(P, m, dim, closed, &c1, &st), BSFIT_OK);
+    assert_int_equal(bsfit_geom_inflections(S, m, dim, closed, &c2, &st), BSFIT_OK);
+    assert_int_equal(c1, c2);
+  }
+}
+
+/* }==================================================================== */
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_filter_any_delta),      cmocka_unit_test(test_filter_uniform_merge),
@@ -568,6 +654,7 @@ int main(void) {
       cmocka_unit_test(test_fit_nonfinite_no_free), cmocka_unit_test(test_params_no_underflow),
       cmocka_unit_test(test_fit_huge_coordinates),  cmocka_unit_test(test_curve_ranges),
       cmocka_unit_test(test_reverse_valid),         cmocka_unit_test(test_ma_minimal_periodic),
+      cmocka_unit_test(test_geometry_any_scale),    cmocka_unit_test(test_geometry_scale_invariant),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
