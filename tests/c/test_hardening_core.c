@@ -642,6 +642,14 @@ static void test_geometry_scale_invariant(void **state) {
     assert_int_equal(bsfit_geom_inflections(P, m, dim, closed, &c1, &st), BSFIT_OK);
     assert_int_equal(bsfit_geom_inflections(S, m, dim, closed, &c2, &st), BSFIT_OK);
     assert_int_equal(c1, c2);
+    if (m >= 6) { /* the noise level scales with the data */
+      double s1 = -1.0, s2 = -1.0;
+      bsfit_err e1 = bsfit_noise_sigma(P, m, dim, closed, &s1, NULL, &st);
+      bsfit_err e2 = bsfit_noise_sigma(S, m, dim, closed, &s2, NULL, &st);
+      assert_int_equal(e1, e2);
+      if (e1 == BSFIT_OK && !(isfinite(s2) && fabs(s2 - ldexp(s1, e)) <= 1e-12 * ldexp(s1, e)))
+        fail_msg("noise sigma %g vs %g * 2^%d", s2, s1, e);
+    }
   }
 }
 
