@@ -160,7 +160,8 @@ BSFIT_API bsfit_err bsfit_curve_length(const bsfit_curve *c, double a, double b,
 ** @param[in]  a     allocator of the scratch (the span polynomials of a cubic, 4 dim + 1
 **                   per control point); NULL = realloc.
 ** @return BSFIT_OK, BSFIT_EINVAL (empty curve, P or u NULL), BSFIT_ENONFINITE (P),
-**         any code of bsfit_curve_validate. */
+**         BSFIT_ERANGE (control points all within 1e-100 of each other but not equal:
+**         the squared distances would underflow), any code of bsfit_curve_validate. */
 BSFIT_API bsfit_err bsfit_curve_closest(const bsfit_curve *c, const double *P, double *u,
                                         double *dist, const bsfit_allocator *a,
                                         bsfit_status *st);
@@ -177,8 +178,8 @@ BSFIT_API bsfit_err bsfit_curve_closest(const bsfit_curve *c, const double *P, d
 ** @param[in]  a    allocator of the scratch (samples, search tree, span polynomials) and
 **                  the interrupt flag, looked at every 4096 points; NULL = realloc.
 ** @return BSFIT_OK, the codes of bsfit_curve_validate, BSFIT_EINVAL (NULL arrays),
-**         BSFIT_ENONFINITE (a point not finite), BSFIT_ENOMEM, BSFIT_EINTR (the entries
-**         before the one interrupted are done). */
+**         BSFIT_ENONFINITE (a point not finite), BSFIT_ERANGE (as bsfit_curve_closest),
+**         BSFIT_ENOMEM, BSFIT_EINTR (the entries before the one interrupted are done). */
 BSFIT_API bsfit_err bsfit_curve_closest_many(const bsfit_curve *c, const double *pts, size_t m,
                                              double *u, double *dist, const bsfit_allocator *a,
                                              bsfit_status *st);
@@ -196,7 +197,8 @@ BSFIT_API bsfit_err bsfit_curve_closest_many(const bsfit_curve *c, const double 
 **                      interrupt flag, looked at every 4096 points; NULL = realloc.
 ** @return BSFIT_OK, BSFIT_EINVAL (empty curve, pts or u NULL with m > 0, iters < 0),
 **         BSFIT_EDIM, BSFIT_EDEGREE, BSFIT_ENONFINITE (a point or start; checked before
-**         any is moved), BSFIT_EINTR (the entries before the one interrupted are done). */
+**         any is moved), BSFIT_ERANGE (as bsfit_curve_closest), BSFIT_EINTR (the entries
+**         before the one interrupted are done). */
 BSFIT_API bsfit_err bsfit_curve_project_many(const bsfit_curve *c, const double *pts, size_t m,
                                              double *u, double *dist, int iters,
                                              const bsfit_allocator *a, bsfit_status *st);

@@ -51,12 +51,15 @@ typedef struct len_ctx {
   double x[GL_ORDER], w[GL_ORDER];
 } len_ctx;
 
+/* |C'(u)|, scaled like hypot: squares of a curve 1e-200 across underflowed to a length 0 */
 static double speed(const len_ctx *L, double u) {
-  double D[2 * 4], v = 0.0;
+  double D[2 * 4], v = 0.0, big = 0.0;
   size_t q, d = (size_t)L->c->dim;
   bsfit__curve_derivs_span(L->c, L->s, u, 1, D);
-  for (q = 0; q < d; q++) v += D[d + q] * D[d + q];
-  return sqrt(v);
+  for (q = 0; q < d; q++) big = fmax(big, fabs(D[d + q]));
+  if (big == 0.0) return 0.0;
+  for (q = 0; q < d; q++) v += (D[d + q] / big) * (D[d + q] / big);
+  return big * sqrt(v);
 }
 
 static double gl_integral(const len_ctx *L, double lo, double hi) {
@@ -105,6 +108,24 @@ bsfit_err bsfit_curve_length(const bsfit_curve *c, double a, double b, double *l
 /* {====================================================================
 ** Closest point and projection
 ** ===================================================================== */
+
+/* The searches compare squared distances: a curve whose control points all lie within
+** BSFIT_EXTENT_MIN of each other (but not on one point) would have them underflow to 0
+** and every sample would look as close as the next. Refused rather than answered. */
+#define BSFIT_EXTENT_MIN 1e-100
+
+static bsfit_err check_extent(const bsfit_curve *c, bsfit_status *st) {
+  size_t i, k, d = (size_t)c->dim;
+  double ext = 0.0;
+  for (i = 1; i < c->n; i++)
+    for (k = 0; k < d; k++) ext = fmax(ext, fabs(c->ctrl[i * d + k] - c->ctrl[k]));
+  if (ext > 0.0 && ext < BSFIT_EXTENT_MIN)
+    return bsfit__fail(st, BSFIT_ERANGE,
+                       "the curve is %g across, below 1e-100: its squared distances would "
+                       "underflow (scale the data)",
+                       ext);
+  return BSFIT_OK;
+}
 
 /* Where a parameter may go: [lo, hi], clamped for open curves; periodic curves are
 ** evaluated at any u (wrapped) and only the final answer is wrapped. A polynomial cubic
@@ -285,6 +306,7 @@ bsfit_err bsfit_curve_closest(const bsfit_curve *c, const double *P, double *u, 
   double a, b, D[3 * 4], best = INFINITY, ubest = 0.0, hbest = 0.0, d2;
   size_t s, i, p;
   bsfit_err e = bsfit_curve_validate(c, st);
+  if (e == BSFIT_OK) e = check_extent(c, st);
   if (e != BSFIT_OK) return e;
   if (P == NULL || u == NULL) return bsfit__fail(st, BSFIT_EINVAL, "no point or no output");
   if (!bsfit__all_finite(P, (size_t)c->dim))
@@ -354,6 +376,7 @@ bsfit_err bsfit_curve_closest_many(const bsfit_curve *c, const double *pts, size
   span_polys sp;
   bsfit__nearest nn;
   bsfit_err e = bsfit_curve_validate(c, st);
+  if (e == BSFIT_OK) e = check_extent(c, st);
   if (e != BSFIT_OK) return e;
   if (m > 0 && (pts == NULL || u == NULL)) return bsfit__fail(st, BSFIT_EINVAL, "no points or no output");
   if (!bsfit__all_finite(pts, m * (size_t)c->dim))
@@ -397,6 +420,7 @@ bsfit_err bsfit_curve_project_many(const bsfit_curve *c, const double *pts, size
   size_t i, d;
   span_polys sp;
   bsfit_err e = bsfit__curve_check(c, st);
+  if (e == BSFIT_OK) e = check_extent(c, st);
   if (e != BSFIT_OK) return e;
   if (m > 0 && (pts == NULL || u == NULL))
     return bsfit__fail(st, BSFIT_EINVAL, "no points or no parameters");

@@ -653,16 +653,69 @@ static void test_geometry_scale_invariant(void **state) {
   }
 }
 
+/* A curve scaled by 2^e keeps its length (scaled by 2^e, to 1e-12) at every e from
+** -1000 to 330 (its squared speeds underflowed to a length 0 below about 1e-154); its
+** closest points are the same feet while it is at least 1e-100 across, and below that
+** the searches answer BSFIT_ERANGE instead of a foot at distance 0. */
+static void test_curve_measures_any_scale(void **state) {
+  test_rng r = {0x6e2u};
+  int trial;
+  (void)state;
+  for (trial = 0; trial < 200; trial++) {
+    int p = 1 + trial % 5, e = (int)rng_range(&r, -1000.0, 330.0);
+    size_t n = (size_t)p + 1 + (size_t)(rng_uniform(&r) * 6), k;
+    double P[32], S[32], l1, l2, u1, u2, d1, d2, Q[2], QS[2], ext = 0.0;
+    bsfit_curve c1, c2;
+    bsfit_status st;
+    bsfit_err e2;
+    for (k = 0; k < 2 * n; k++) {
+      P[k] = floor(rng_range(&r, -1024.0, 1024.0)) / 1024.0;
+      S[k] = ldexp(P[k], e);
+      ext = fmax(ext, fabs(S[k] - S[k % 2]));
+    }
+    if (ldexp(1.0, e) > BSFIT_COORD_MAX) continue;
+    bsfit_curve_init(&c1);
+    bsfit_curve_init(&c2);
+    assert_int_equal(bsfit_curve_new(&c1, p, 2, n, NULL, P, NULL, 0, NULL, &st), BSFIT_OK);
+    assert_int_equal(bsfit_curve_new(&c2, p, 2, n, NULL, S, NULL, 0, NULL, &st), BSFIT_OK);
+    assert_int_equal(bsfit_curve_length(&c1, 0.0, 1.0, &l1, &st), BSFIT_OK);
+    assert_int_equal(bsfit_curve_length(&c2, 0.0, 1.0, &l2, &st), BSFIT_OK);
+    if (!(fabs(l2 - ldexp(l1, e)) <= 1e-12 * ldexp(l1, e)))
+      fail_msg("length %g vs %g * 2^%d", l2, l1, e);
+    Q[0] = 0.3;
+    Q[1] = -0.2;
+    QS[0] = ldexp(Q[0], e);
+    QS[1] = ldexp(Q[1], e);
+    assert_int_equal(bsfit_curve_closest(&c1, Q, &u1, &d1, NULL, &st), BSFIT_OK);
+    e2 = bsfit_curve_closest(&c2, QS, &u2, &d2, NULL, &st);
+    if (ext > 0 && ext < 1e-100) {
+      assert_int_equal(e2, BSFIT_ERANGE);
+    } else {
+      assert_int_equal(e2, BSFIT_OK);
+      assert_true(u1 == u2 && d2 == ldexp(d1, e));
+    }
+    bsfit_curve_free(&c1);
+    bsfit_curve_free(&c2);
+  }
+}
+
 /* }==================================================================== */
 
 int main(void) {
   const struct CMUnitTest tests[] = {
-      cmocka_unit_test(test_filter_any_delta),      cmocka_unit_test(test_filter_uniform_merge),
-      cmocka_unit_test(test_periodic_multiplicity), cmocka_unit_test(test_periodic_issue_case),
-      cmocka_unit_test(test_fit_nonfinite_no_free), cmocka_unit_test(test_params_no_underflow),
-      cmocka_unit_test(test_fit_huge_coordinates),  cmocka_unit_test(test_curve_ranges),
-      cmocka_unit_test(test_reverse_valid),         cmocka_unit_test(test_ma_minimal_periodic),
-      cmocka_unit_test(test_geometry_any_scale),    cmocka_unit_test(test_geometry_scale_invariant),
+      cmocka_unit_test(test_filter_any_delta),
+      cmocka_unit_test(test_filter_uniform_merge),
+      cmocka_unit_test(test_periodic_multiplicity),
+      cmocka_unit_test(test_periodic_issue_case),
+      cmocka_unit_test(test_fit_nonfinite_no_free),
+      cmocka_unit_test(test_params_no_underflow),
+      cmocka_unit_test(test_fit_huge_coordinates),
+      cmocka_unit_test(test_curve_ranges),
+      cmocka_unit_test(test_reverse_valid),
+      cmocka_unit_test(test_ma_minimal_periodic),
+      cmocka_unit_test(test_geometry_any_scale),
+      cmocka_unit_test(test_geometry_scale_invariant),
+      cmocka_unit_test(test_curve_measures_any_scale),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
