@@ -301,9 +301,12 @@ BSFIT_API void bsfit_curve_domain(const bsfit_curve *c, double *a, double *b);
 /** Number of distinct control points (n - p for periodic curves, n otherwise). */
 BSFIT_API size_t bsfit_curve_distinct(const bsfit_curve *c);
 
-/** Point C(u). u outside the domain: extrapolated for open curves, wrapped into the
-** period for periodic ones. @param[out] out dim doubles.
-** @return BSFIT_OK or BSFIT_ENONFINITE (u not finite). */
+/** Point C(u). u outside the domain: extrapolated for open curves, up to one domain
+** length beyond either end (farther out the end polynomials lose their digits), wrapped
+** into the period for periodic ones. @param[out] out dim doubles.
+** @return BSFIT_OK, BSFIT_ENONFINITE (u not finite), BSFIT_EDOMAIN (an open curve's u more
+**         than one domain length outside the domain), BSFIT_ERANGE (the extrapolated
+**         point overflows). */
 BSFIT_API bsfit_err bsfit_curve_eval(const bsfit_curve *c, double u, double *out,
                                      bsfit_status *st);
 

@@ -46,7 +46,9 @@ BSFIT_API bsfit_err bsfit_curve_derivs(const bsfit_curve *c, double u, int k, do
 ** @param[out] out  m*dim doubles, row-major. On BSFIT_ENONFINITE the points before the
 **                  bad parameter are written, the others are unspecified.
 ** @return BSFIT_OK, BSFIT_EINVAL (empty curve, u or out NULL with m > 0), BSFIT_EDIM,
-**         BSFIT_EDEGREE, BSFIT_ENONFINITE (a parameter is NaN or infinite). */
+**         BSFIT_EDEGREE, BSFIT_ENONFINITE (a parameter is NaN or infinite), BSFIT_EDOMAIN
+**         (as bsfit_curve_eval, checked before any point is written), BSFIT_ERANGE (an
+**         extrapolated point overflows). */
 BSFIT_API bsfit_err bsfit_curve_eval_many(const bsfit_curve *c, const double *u, size_t m,
                                           double *out, bsfit_status *st);
 

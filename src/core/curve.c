@@ -281,8 +281,20 @@ void bsfit__curve_eval_unchecked(const bsfit_curve *c, double u, double *out) {
   }
 }
 
+int bsfit__curve_reach(const bsfit_curve *c, double u) {
+  double a, b;
+  if (c->periodic) return isfinite(u);
+  bsfit_curve_domain(c, &a, &b);
+  return u >= a - (b - a) && u <= b + (b - a);
+}
+
 bsfit_err bsfit_curve_eval(const bsfit_curve *c, double u, double *out, bsfit_status *st) {
   if (!isfinite(u)) return bsfit__fail(st, BSFIT_ENONFINITE, "parameter is not finite");
+  if (!bsfit__curve_reach(c, u))
+    return bsfit__fail(st, BSFIT_EDOMAIN,
+                       "parameter %g is more than one domain length outside the domain", u);
   bsfit__curve_eval_unchecked(c, u, out);
+  if (!bsfit__all_finite(out, (size_t)c->dim))
+    return bsfit__fail(st, BSFIT_ERANGE, "C(%g) overflows (extrapolated)", u);
   return bsfit__ok(st);
 }

@@ -699,6 +699,34 @@ static void test_curve_measures_any_scale(void **state) {
   }
 }
 
+/* An open curve is extrapolated by its end polynomials up to one domain length beyond
+** either end, exactly (a clamped cubic on [0, 1] with x control values 0, 1, 3, 4 is
+** x(u) = 3u + 3u^2 - 2u^3 everywhere); farther out the answer is BSFIT_EDOMAIN (it was
+** (0, 0) at u = 1e100: the basis divided cancelled sums), never a wrong point. */
+static void test_eval_extrapolation(void **state) {
+  const double P[8] = {0, 0, 1, 2, 3, 1, 4, 0};
+  bsfit_curve c;
+  bsfit_status st;
+  double y[2], ys[4], us[2] = {0.5, 7.0};
+  int i;
+  (void)state;
+  bsfit_curve_init(&c);
+  assert_int_equal(bsfit_curve_new(&c, 3, 2, 4, NULL, P, NULL, 0, NULL, &st), BSFIT_OK);
+  for (i = 0; i <= 300; i++) {
+    double u = -1.0 + 3.0 * i / 300.0, x = 3 * u + 3 * u * u - 2 * u * u * u;
+    assert_int_equal(bsfit_curve_eval(&c, u, y, &st), BSFIT_OK);
+    assert_true(fabs(y[0] - x) <= 1e-12 * fmax(1.0, fabs(x)));
+  }
+  for (i = 0; i < 4; i++) {
+    const double far[4] = {2.0000001, -1.0000001, 1e100, -1e300};
+    double d[3 * 2];
+    assert_int_equal(bsfit_curve_eval(&c, far[i], y, &st), BSFIT_EDOMAIN);
+    assert_int_equal(bsfit_curve_derivs(&c, far[i], 2, d, &st), BSFIT_EDOMAIN);
+  }
+  assert_int_equal(bsfit_curve_eval_many(&c, us, 2, ys, &st), BSFIT_EDOMAIN);
+  bsfit_curve_free(&c);
+}
+
 /* }==================================================================== */
 
 int main(void) {
@@ -716,6 +744,7 @@ int main(void) {
       cmocka_unit_test(test_geometry_any_scale),
       cmocka_unit_test(test_geometry_scale_invariant),
       cmocka_unit_test(test_curve_measures_any_scale),
+      cmocka_unit_test(test_eval_extrapolation),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
