@@ -220,21 +220,37 @@ static void eval_bezier(const bsfit_surface *s, double u, double v, double *out)
   contract(s, 0, 0, Bu, Bv, out);
 }
 
+/* (u, v) finite and within one domain length of the domain in each direction: farther
+** out the end polynomials' extrapolation loses its digits (as for curves) */
+static bsfit_err check_uv(const bsfit_surface *s, double u, double v, bsfit_status *st) {
+  double ua, ub, va, vb;
+  if (!isfinite(u) || !isfinite(v))
+    return bsfit__fail(st, BSFIT_ENONFINITE, "parameter (%g, %g) is not finite", u, v);
+  bsfit_surface_domain(s, &ua, &ub, &va, &vb);
+  if (!(u >= ua - (ub - ua) && u <= ub + (ub - ua) && v >= va - (vb - va) && v <= vb + (vb - va)))
+    return bsfit__fail(st, BSFIT_EDOMAIN,
+                       "parameter (%g, %g) is more than one domain length outside the domain", u,
+                       v);
+  return BSFIT_OK;
+}
+
 bsfit_err bsfit_surface_eval(const bsfit_surface *s, double u, double v, double *out,
                              bsfit_status *st) {
   double Nu[BSFIT_MAX_DEGREE + 1], Nv[BSFIT_MAX_DEGREE + 1];
   size_t su, sv;
-  if (!isfinite(u) || !isfinite(v))
-    return bsfit__fail(st, BSFIT_ENONFINITE, "parameter (%g, %g) is not finite", u, v);
+  bsfit_err e = check_uv(s, u, v, st);
+  if (e != BSFIT_OK) return e;
   if (s->bezier) {
     eval_bezier(s, u, v, out);
-    return bsfit__ok(st);
+  } else {
+    su = bsfit_knots_find_span(s->knots_u, s->nu, s->degree_u, u);
+    sv = bsfit_knots_find_span(s->knots_v, s->nv, s->degree_v, v);
+    bsfit_basis_funs(su, u, s->degree_u, s->knots_u, Nu);
+    bsfit_basis_funs(sv, v, s->degree_v, s->knots_v, Nv);
+    contract(s, su - (size_t)s->degree_u, sv - (size_t)s->degree_v, Nu, Nv, out);
   }
-  su = bsfit_knots_find_span(s->knots_u, s->nu, s->degree_u, u);
-  sv = bsfit_knots_find_span(s->knots_v, s->nv, s->degree_v, v);
-  bsfit_basis_funs(su, u, s->degree_u, s->knots_u, Nu);
-  bsfit_basis_funs(sv, v, s->degree_v, s->knots_v, Nv);
-  contract(s, su - (size_t)s->degree_u, sv - (size_t)s->degree_v, Nu, Nv, out);
+  if (!bsfit__all_finite(out, (size_t)s->dim))
+    return bsfit__fail(st, BSFIT_ERANGE, "S(%g, %g) overflows (extrapolated)", u, v);
   return bsfit__ok(st);
 }
 
@@ -313,11 +329,12 @@ static void rational_derivs(size_t d, int k, const double *W, double *out) {
 bsfit_err bsfit_surface_derivs(const bsfit_surface *s, double u, double v, int k, double *out,
                                bsfit_status *st) {
   double W[KMAX * KMAX];
+  bsfit_err e;
   if (k < 0 || k > BSFIT_MAX_DEGREE)
     return bsfit__fail(st, BSFIT_EINVAL, "derivative order %d out of range 0..%d", k,
                        BSFIT_MAX_DEGREE);
-  if (!isfinite(u) || !isfinite(v))
-    return bsfit__fail(st, BSFIT_ENONFINITE, "parameter (%g, %g) is not finite", u, v);
+  e = check_uv(s, u, v, st);
+  if (e != BSFIT_OK) return e;
   homogeneous_derivs(s, u, v, k, out, W);
   if (s->weights != NULL) {
     rational_derivs((size_t)s->dim, k, W, out);
