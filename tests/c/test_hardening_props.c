@@ -430,6 +430,9 @@ static void test_surface_ops(void **state) {
       else
         assert_true(e == BSFIT_ERANGE || e == BSFIT_EDEGENERATE);
     }
+    /* farther out than one domain length: refused, not a point of cancelled sums */
+    assert_int_equal(bsfit_surface_eval(&s, ua - 3.0 * (ub - ua), va, y1, &st), BSFIT_EDOMAIN);
+    assert_int_equal(bsfit_surface_eval(&s, ua, vb + 1e300, y1, &st), BSFIT_EDOMAIN);
     assert_int_equal(bsfit_surface_sample_grid(&s, 5, 5, grid, &st), BSFIT_OK);
     assert_true(all_finite(grid, 75));
     if (!rational) {
