@@ -85,10 +85,14 @@ static void blossom(const bsfit__hcurve *h, size_t s, const double *x, double *w
   memcpy(out, work + p * hd, hd * sizeof(double));
 }
 
-/* The longest non-empty span s of h (p <= s < n) inside [lo, hi]; lo < hi are knots. */
-static size_t longest_span(const bsfit__hcurve *h, double lo, double hi) {
-  size_t s = bsfit_knots_find_span(h->U, h->n, h->p, lo), best = s;
+/* The longest non-empty span s of h (p <= s < n) inside [lo, hi]; lo < hi are knots.
+** *cur: the last s with U[s] <= lo, carried from the previous call (lo never decreases
+** from one control point to the next): a step or two instead of a binary search. */
+static size_t longest_span(const bsfit__hcurve *h, double lo, double hi, size_t *cur) {
+  size_t s, best;
   double len = -1.0;
+  while (*cur + 1 < h->n && h->U[*cur + 1] <= lo) (*cur)++;
+  s = best = *cur;
   for (; s < h->n && h->U[s] < hi; s++) {
     double w = h->U[s + 1] - h->U[s];
     if (w > len && h->U[s] >= lo && h->U[s + 1] <= hi) {
@@ -107,10 +111,10 @@ static size_t elevated_knots(const bsfit__hcurve *h) {
 }
 
 /* Q_i from the blossom (work: (p+2) hd + p + 1 doubles) */
-static void elevated_point(const bsfit__hcurve *h, const double *V, size_t i, double *work,
-                           double *Q) {
+static void elevated_point(const bsfit__hcurve *h, const double *V, size_t i, size_t *cur,
+                           double *work, double *Q) {
   size_t p = (size_t)h->p, hd = (size_t)h->hd, j, k, c;
-  size_t s = longest_span(h, V[i], V[i + p + 2]);
+  size_t s = longest_span(h, V[i], V[i + p + 2], cur);
   double *x = work + (p + 2) * hd, *b = work + (p + 1) * hd;
   memset(Q, 0, hd * sizeof(double));
   for (j = 0; j <= p; j++) {
@@ -125,6 +129,7 @@ static void elevated_point(const bsfit__hcurve *h, const double *V, size_t i, do
 /* h (clamped, interior multiplicities <= p) raised by one degree into e2 */
 static bsfit_err elevate_once(const bsfit__hcurve *h, bsfit__hcurve *e2, bsfit_status *st) {
   size_t nk = h->n + (size_t)h->p + 1, nv = elevated_knots(h), hd = (size_t)h->hd, i, k = 0;
+  size_t cur = (size_t)h->p;
   size_t wsize = ((size_t)h->p + 3) * hd + (size_t)h->p + 1;
   double *work;
   bsfit_err e = bsfit__hc_alloc(e2, h->p + 1, h->hd, nv - (size_t)h->p - 2, &h->alloc, st);
@@ -143,7 +148,7 @@ static bsfit_err elevate_once(const bsfit__hcurve *h, bsfit__hcurve *e2, bsfit_s
       e = bsfit__fail(st, BSFIT_EINTR, "degree elevation interrupted");
       break;
     }
-    elevated_point(h, e2->U, i, work, e2->P + i * hd);
+    elevated_point(h, e2->U, i, &cur, work, e2->P + i * hd);
   }
   bsfit__free(&h->alloc, work, wsize * sizeof(double));
   if (e != BSFIT_OK) bsfit__hc_free(e2);
