@@ -53,6 +53,15 @@ extern "C" {
 #  define BSFIT_API __attribute__((visibility("default")))
 #endif
 
+/** Largest |coordinate| of a point, control point or tangent the library accepts: squares,
+** sums of squares and products with weights then stay far from overflow (1e200 << DBL_MAX),
+** so every operation that returns OK returns finite numbers (docs/robustness-core.md). */
+#define BSFIT_COORD_MAX 1e100
+/** Range of the weights of a rational curve: normal numbers whose products with any
+** coordinate stay finite. */
+#define BSFIT_WEIGHT_MIN 1e-100
+#define BSFIT_WEIGHT_MAX 1e100
+
 /** Highest degree supported (basis work arrays live on the stack). */
 #define BSFIT_MAX_DEGREE 30
 
@@ -82,6 +91,8 @@ typedef enum bsfit_err {
   BSFIT_ETOOFEW = -11,      /**< too few points (e.g. fewer points than control points) */
   BSFIT_EDEGENERATE = -12,  /**< degenerate geometry (all points coincident, zero length...) */
   BSFIT_ENOTPERIODIC = -13, /**< a periodic curve's wrapped control points or knot spans do not repeat */
+  BSFIT_ERANGE = -14,       /**< a finite value beyond the documented range (BSFIT_COORD_MAX,
+                                 BSFIT_WEIGHT_MIN/MAX), or a result that would overflow */
   BSFIT_ESINGULAR = -20,    /**< singular system */
   BSFIT_ENOTSPD = -21,      /**< normal matrix not positive definite */
   BSFIT_ENOCONV = -22,      /**< an iteration did not converge */
@@ -268,7 +279,12 @@ BSFIT_API bsfit_err bsfit_curve_new_bezier(bsfit_curve *c, int dim, size_t n,
                                            const bsfit_allocator *a, bsfit_status *st);
 
 /** Checks every invariant of c (knots, finite coordinates, positive finite weights,
-** Bézier shape, periodic repetition). */
+** Bézier shape, periodic repetition).
+** @return BSFIT_OK; a code of bsfit_knots_validate; BSFIT_ENONFINITE; BSFIT_ERANGE (a
+**         coordinate beyond BSFIT_COORD_MAX in magnitude); BSFIT_EWEIGHT (a weight not in
+**         [BSFIT_WEIGHT_MIN, BSFIT_WEIGHT_MAX]); BSFIT_EINVAL (Bézier shape);
+**         BSFIT_ENOTPERIODIC; BSFIT_EMULT (a closed curve with a knot of multiplicity
+**         above its degree, the seam included). */
 BSFIT_API bsfit_err bsfit_curve_validate(const bsfit_curve *c, bsfit_status *st);
 
 /** Deep copy src into dst (dst's previous content is freed; allocator a, or src's if NULL).
@@ -285,9 +301,12 @@ BSFIT_API void bsfit_curve_domain(const bsfit_curve *c, double *a, double *b);
 /** Number of distinct control points (n - p for periodic curves, n otherwise). */
 BSFIT_API size_t bsfit_curve_distinct(const bsfit_curve *c);
 
-/** Point C(u). u outside the domain: extrapolated for open curves, wrapped into the
-** period for periodic ones. @param[out] out dim doubles.
-** @return BSFIT_OK or BSFIT_ENONFINITE (u not finite). */
+/** Point C(u). u outside the domain: extrapolated for open curves, up to one domain
+** length beyond either end (farther out the end polynomials lose their digits), wrapped
+** into the period for periodic ones. @param[out] out dim doubles.
+** @return BSFIT_OK, BSFIT_ENONFINITE (u not finite), BSFIT_EDOMAIN (an open curve's u more
+**         than one domain length outside the domain), BSFIT_ERANGE (the extrapolated
+**         point overflows). */
 BSFIT_API bsfit_err bsfit_curve_eval(const bsfit_curve *c, double u, double *out,
                                      bsfit_status *st);
 

@@ -37,10 +37,13 @@
 ** @param[in]  pts    m points, dim doubles each (dim 2 or 3).
 ** @param[in]  closed non-zero: the windows wrap around.
 ** @param[out] sigma  the estimate (0 for data exactly on a smooth curve or a line).
+** @param[in]  a      allocator of the scratch (2m doubles) and the interrupt flag,
+**                    looked at every 4096 points; NULL = realloc, never interrupted.
 ** @return BSFIT_OK, BSFIT_EDIM, BSFIT_ETOOFEW (m < 6), BSFIT_ENONFINITE,
-**         BSFIT_EDEGENERATE (no window with distinct points), BSFIT_ENOMEM. */
+**         BSFIT_EDEGENERATE (no window with distinct points), BSFIT_ENOMEM, BSFIT_EINTR. */
 BSFIT_API bsfit_err bsfit_noise_sigma(const double *pts, size_t m, int dim, int closed,
-                                      double *sigma, bsfit_status *st);
+                                      double *sigma, const bsfit_allocator *a,
+                                      bsfit_status *st);
 
 /** Options of bsfit_corners_detect. Zero-initialise, then set what you need. */
 typedef struct bsfit_corner_opts {
@@ -131,12 +134,14 @@ BSFIT_API bsfit_err bsfit_corners_detect(const double *pts, size_t m, int dim,
 ** @param[in]  w      m positive weights, or NULL.
 ** @param[in]  trust  fraction of the median weight, in [0, 1) (0: every point trusted).
 ** @param[out] u      m parameters.
+** @param[in]  a      allocator of the scratch (about m (dim + 3) doubles); NULL = realloc.
 ** @return BSFIT_OK, the codes of bsfit_params, BSFIT_EWEIGHT (a weight <= 0 or not
 **         finite), BSFIT_EINVAL (trust out of range), BSFIT_EDEGENERATE (fewer than
 **         two trusted points), BSFIT_ENOMEM. */
 BSFIT_API bsfit_err bsfit_params_trusted(const double *pts, size_t m, int dim,
                                          bsfit_param_kind kind, int closed, const double *w,
-                                         double trust, double *u, bsfit_status *st);
+                                         double trust, double *u, const bsfit_allocator *a,
+                                         bsfit_status *st);
 
 /** Makes parameters agree with corners that lie between samples.
 **
@@ -170,12 +175,14 @@ BSFIT_API bsfit_err bsfit_params_through_corners(const double *pts, size_t m, in
 ** @param[in]  n_target wanted number of distinct control points N (>= p+1).
 ** @param[out] period   up to n_target+1 knots t_0 <= ... <= t_N = t_0 + 1.
 ** @param[out] n_out    the N actually placed (<= n_target; fewer when the guard merged).
+** @param[in]  a        allocator of the scratch (O(n_target + nb)); NULL = realloc.
 ** @return BSFIT_OK, BSFIT_EDEGREE (p out of 1..BSFIT_MAX_DEGREE), BSFIT_EINVAL (breaks
 **         not increasing or out of range, u not in [0,1) non-decreasing, n_target too
 **         small for the breaks: N >= nb*p + 1 and N >= p+1), BSFIT_ETOOFEW (too few
 **         points for even the smallest knot vector), BSFIT_ENOMEM. */
 BSFIT_API bsfit_err bsfit_knots_place_breaks(const double *u, size_t m, int p, size_t n_target,
                                              const double *breaks, size_t nb, double *period,
-                                             size_t *n_out, bsfit_status *st);
+                                             size_t *n_out, const bsfit_allocator *a,
+                                             bsfit_status *st);
 
 #endif /* BSFIT_ANALYSIS_H */

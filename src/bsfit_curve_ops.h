@@ -34,7 +34,8 @@
 ** @param[in]  k    highest order, >= 0 (any value: no internal limit).
 ** @param[out] out  (k+1)*dim doubles: C(u), C'(u), ..., C^(k)(u), each dim coordinates.
 ** @return BSFIT_OK, BSFIT_EINVAL (empty curve, k < 0, out NULL), BSFIT_EDIM,
-**         BSFIT_EDEGREE, BSFIT_ENONFINITE (u NaN or infinite). */
+**         BSFIT_EDEGREE, BSFIT_ENONFINITE (u NaN or infinite), BSFIT_ERANGE (a derivative
+**         overflows: high orders over tiny knot spans, or u extrapolated far out). */
 BSFIT_API bsfit_err bsfit_curve_derivs(const bsfit_curve *c, double u, int k, double *out,
                                        bsfit_status *st);
 
@@ -45,7 +46,9 @@ BSFIT_API bsfit_err bsfit_curve_derivs(const bsfit_curve *c, double u, int k, do
 ** @param[out] out  m*dim doubles, row-major. On BSFIT_ENONFINITE the points before the
 **                  bad parameter are written, the others are unspecified.
 ** @return BSFIT_OK, BSFIT_EINVAL (empty curve, u or out NULL with m > 0), BSFIT_EDIM,
-**         BSFIT_EDEGREE, BSFIT_ENONFINITE (a parameter is NaN or infinite). */
+**         BSFIT_EDEGREE, BSFIT_ENONFINITE (a parameter is NaN or infinite), BSFIT_EDOMAIN
+**         (as bsfit_curve_eval, checked before any point is written), BSFIT_ERANGE (an
+**         extrapolated point overflows). */
 BSFIT_API bsfit_err bsfit_curve_eval_many(const bsfit_curve *c, const double *u, size_t m,
                                           double *out, bsfit_status *st);
 
@@ -156,10 +159,14 @@ BSFIT_API bsfit_err bsfit_curve_length(const bsfit_curve *c, double a, double b,
 ** @param[in]  P     dim coordinates.
 ** @param[out] u     the foot's parameter, in [a, b] ([a, b) for periodic curves).
 ** @param[out] dist  |C(u) - P|, or NULL.
+** @param[in]  a     allocator of the scratch (the span polynomials of a cubic, 4 dim + 1
+**                   per control point); NULL = realloc.
 ** @return BSFIT_OK, BSFIT_EINVAL (empty curve, P or u NULL), BSFIT_ENONFINITE (P),
-**         any code of bsfit_curve_validate. */
+**         BSFIT_ERANGE (control points all within 1e-100 of each other but not equal:
+**         the squared distances would underflow), any code of bsfit_curve_validate. */
 BSFIT_API bsfit_err bsfit_curve_closest(const bsfit_curve *c, const double *P, double *u,
-                                        double *dist, bsfit_status *st);
+                                        double *dist, const bsfit_allocator *a,
+                                        bsfit_status *st);
 
 /** bsfit_curve_closest for many points at once: the coarse samples (8 per knot span) are
 ** evaluated once, then each point is bracketed by its nearest sample and refined by
@@ -170,10 +177,14 @@ BSFIT_API bsfit_err bsfit_curve_closest(const bsfit_curve *c, const double *P, d
 ** Cost: K = 8 (spans) + 1 samples, indexed once by a k-d tree (O(K log K)), then about
 ** O(log K) per point near the curve to find its nearest sample (a plain scan for small K
 ** or few points), plus Newton per point.
+** @param[in]  a    allocator of the scratch (samples, search tree, span polynomials) and
+**                  the interrupt flag, looked at every 4096 points; NULL = realloc.
 ** @return BSFIT_OK, the codes of bsfit_curve_validate, BSFIT_EINVAL (NULL arrays),
-**         BSFIT_ENONFINITE (a point not finite), BSFIT_ENOMEM. */
+**         BSFIT_ENONFINITE (a point not finite), BSFIT_ERANGE (as bsfit_curve_closest),
+**         BSFIT_ENOMEM, BSFIT_EINTR (the entries before the one interrupted are done). */
 BSFIT_API bsfit_err bsfit_curve_closest_many(const bsfit_curve *c, const double *pts, size_t m,
-                                             double *u, double *dist, bsfit_status *st);
+                                             double *u, double *dist, const bsfit_allocator *a,
+                                             bsfit_status *st);
 
 /** Projects many points, each from its own starting parameter (the fitter's parameter
 ** correction): up to `iters` safeguarded Newton steps on f(u) = C'(u).(C(u) - P), a step
@@ -184,21 +195,26 @@ BSFIT_API bsfit_err bsfit_curve_closest_many(const bsfit_curve *c, const double 
 ** @param[in,out] u     m parameters: starting values in, feet out.
 ** @param[out]    dist  m distances |C(u_i) - P_i|, or NULL.
 ** @param[in]     iters Newton steps per point, >= 0 (0: only clamp/wrap and measure).
+** @param[in]     a     allocator of the scratch (span polynomials of a cubic) and the
+**                      interrupt flag, looked at every 4096 points; NULL = realloc.
 ** @return BSFIT_OK, BSFIT_EINVAL (empty curve, pts or u NULL with m > 0, iters < 0),
-**         BSFIT_EDIM, BSFIT_EDEGREE, BSFIT_ENONFINITE (a point or start; the entries before
-**         it are done). */
+**         BSFIT_EDIM, BSFIT_EDEGREE, BSFIT_ENONFINITE (a point or start; checked before
+**         any is moved), BSFIT_ERANGE (as bsfit_curve_closest), BSFIT_EINTR (the entries
+**         before the one interrupted are done). */
 BSFIT_API bsfit_err bsfit_curve_project_many(const bsfit_curve *c, const double *pts, size_t m,
                                              double *u, double *dist, int iters,
-                                             bsfit_status *st);
+                                             const bsfit_allocator *a, bsfit_status *st);
 
 /** k equally spaced samples: open curves at a + (b-a) i/(k-1), i = 0..k-1 (both ends
 ** included); periodic curves at a + (b-a) i/k, i = 0..k-1 (the period [a, b), as C(b) =
 ** C(a) would repeat the first point).
 ** @param[out] out  k*dim doubles, row-major.
+** @param[in]  a    carries the interrupt flag, looked at every 4096 samples (no
+**                  allocation); NULL = never interrupted.
 ** @return BSFIT_OK, BSFIT_EINVAL (empty curve, k < 2, out NULL), BSFIT_EDIM,
-**         BSFIT_EDEGREE. */
+**         BSFIT_EDEGREE, BSFIT_EINTR. */
 BSFIT_API bsfit_err bsfit_curve_sample(const bsfit_curve *c, size_t k, double *out,
-                                       bsfit_status *st);
+                                       const bsfit_allocator *a, bsfit_status *st);
 
 /* }==================================================================== */
 

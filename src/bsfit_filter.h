@@ -69,12 +69,17 @@ BSFIT_API int bsfit_curve_is_uniform(const bsfit_curve *c);
 BSFIT_API bsfit_err bsfit_filter_box_curve(const bsfit_curve *c, int k, bsfit_curve *out,
                                            bsfit_status *st);
 
+/** The exact filter's smallest half-width, relative to the length of the (unwrapped)
+** domain: below it the difference of antiderivatives keeps fewer than ~9 digits. */
+#define BSFIT_FILTER_MIN_DELTA (1.0 / 16777216.0)
+
 /** Exact box filter of half-width delta of any polynomial curve (clamped, unclamped,
 ** non-uniform, closed), by the antiderivative spline I (degree p+1, control points
 ** J^i = sum_{j<i} Q^j (u_{j+p+1} - u_j)/(p+1)) and C_F(t) = (I(t+delta) - I(t-delta))/(2 delta),
 ** both shifted copies brought to one knot vector by knot refinement (NURBS Book A5.4).
 ** Result: degree p+1 on the knots {u_i +- delta} (knots closer than about 1e-14 of
-** the curve's extent are merged). Open curves: clamped result over
+** the curve's extent are merged, never two knots of one shifted copy, nor u - delta with
+** u + delta). Open curves: clamped result over
 ** [L - delta, R + delta] (file comment). Closed curves: periodic result.
 ** For a uniform curve and delta = k * spacing / 2 it is the same curve (as a function
 ** of t) as bsfit_filter_box_curve's.
@@ -87,7 +92,10 @@ BSFIT_API bsfit_err bsfit_filter_box_curve(const bsfit_curve *c, int k, bsfit_cu
 **         open curve with U_1 = ... = U_{p+1} or U_{n-1} = ... = U_{n+p-1}: its end
 **         control point is not used by the curve, so the end rule would jump);
 **         BSFIT_EDEGREE (p + 1 > BSFIT_MAX_DEGREE); BSFIT_ENOTPERIODIC (a closed
-**         result with too few knots per period for the expanded form); any code of
+**         result with too few knots per period for the expanded form); BSFIT_EDOMAIN
+**         (delta below BSFIT_FILTER_MIN_DELTA times the domain length, plus 2^20 ulps
+**         of the knots; a closed curve is unwrapped over 2M+1 periods, M = 3 +
+**         (p+1)/N, and that length counts); any code of
 **         bsfit_curve_validate; BSFIT_ENOMEM. On error out is unchanged. */
 BSFIT_API bsfit_err bsfit_filter_box_curve_delta(const bsfit_curve *c, double delta,
                                                  bsfit_curve *out, bsfit_status *st);

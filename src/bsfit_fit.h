@@ -48,8 +48,10 @@ typedef enum bsfit_param_kind {
 **                    Untouched on error. Must not overlap pts.
 ** @return BSFIT_OK; BSFIT_EINVAL (NULL array, unknown kind, closed data whose last point
 **         repeats the first); BSFIT_EDIM; BSFIT_ETOOFEW (m < 2); BSFIT_ENONFINITE (NaN/Inf
-**         in a point, or chords overflowing); BSFIT_EDEGENERATE (all points coincident,
-**         whatever the kind). */
+**         in a point, or chords overflowing); BSFIT_ERANGE (a coordinate beyond
+**         BSFIT_COORD_MAX); BSFIT_EDEGENERATE (all points coincident, whatever the kind).
+**         Chords are scaled like hypot, so points 1e-300 apart still get distinct
+**         parameters: on success the parameters are finite and non-decreasing. */
 BSFIT_API bsfit_err bsfit_params(const double *pts, size_t m, int dim, bsfit_param_kind kind,
                                  int closed, double *u, bsfit_status *st);
 
@@ -232,6 +234,7 @@ BSFIT_API bsfit_err bsfit_fitter_new(bsfit_fitter **f, const bsfit_fit_opts *o,
 ** On error the fitter keeps its previous settings and stays usable.
 ** @return BSFIT_OK; BSFIT_EINVAL (NULL, unknown rule, constraints on a periodic fit,
 **         constraints needing more control points than count, tangent_dim out of 1..4);
+**         BSFIT_ENONFINITE / BSFIT_ERANGE (a tangent NaN/Inf or beyond BSFIT_COORD_MAX);
 **         BSFIT_EDEGREE (degree out of range or >= count); any code of
 **         bsfit_knots_validate / bsfit_knots_periodic for fixed knots (open fixed ends or
 **         tangents also need clamped knots: BSFIT_EINVAL); BSFIT_ENOMEM. */
@@ -276,7 +279,10 @@ BSFIT_API int bsfit_blas_single_thread(void);
 ** @param[out] rep       diagnostics, or NULL (then the rcond estimate is skipped).
 ** @param[out] residuals m distances |Q_k - C(ū_k)|, or NULL.
 ** @return BSFIT_OK; BSFIT_EINVAL (NULL arrays); BSFIT_EDIM; BSFIT_ETOOFEW (m < count);
-**         BSFIT_ENONFINITE (NaN/Inf in a point or parameter); BSFIT_EWEIGHT (a weight
+**         BSFIT_ENONFINITE (NaN/Inf in a point or parameter: both solvers find every one,
+**         even with no free unknown); BSFIT_ERANGE (data beyond BSFIT_COORD_MAX that
+**         push a control point beyond it or make the squared residuals overflow; the
+**         message names the first point beyond the range); BSFIT_EWEIGHT (a weight
 **         zero, negative, subnormal or not finite); BSFIT_EDEGENERATE (all points coincident);
 **         any code of bsfit_knots_place except BSFIT_EEMPTYSPAN (rule-based knots);
 **         BSFIT_EEMPTYSPAN (the normal matrix is not positive definite and some span holds

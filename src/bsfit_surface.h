@@ -91,9 +91,10 @@ BSFIT_API void bsfit_surface_domain(const bsfit_surface *s, double *ua, double *
                                     double *vb);
 
 /** Point S(u, v) of a valid surface. (u, v) outside the domain: extrapolated by the
-** end polynomials, as curves are.
+** end polynomials, as curves are, up to one domain length beyond either end.
 ** @param[out] out dim doubles.
-** @return BSFIT_OK or BSFIT_ENONFINITE (u or v not finite). */
+** @return BSFIT_OK, BSFIT_ENONFINITE (u or v not finite), BSFIT_EDOMAIN (farther out than
+**         one domain length), BSFIT_ERANGE (the extrapolated point overflows). */
 BSFIT_API bsfit_err bsfit_surface_eval(const bsfit_surface *s, double u, double v, double *out,
                                        bsfit_status *st);
 
@@ -102,7 +103,9 @@ BSFIT_API bsfit_err bsfit_surface_eval(const bsfit_surface *s, double u, double 
 ** @param[in]  k   0 <= k <= BSFIT_MAX_DEGREE.
 ** @param[out] out (k+1)*(k+1)*dim doubles: d^(a+b) S / du^a dv^b starts at
 **                 out[(a*(k+1) + b)*dim], for a, b = 0..k (out[0..dim-1] is S(u,v)).
-** @return BSFIT_OK, BSFIT_EINVAL (k out of range) or BSFIT_ENONFINITE (u, v). */
+** @return BSFIT_OK, BSFIT_EINVAL (k out of range), BSFIT_ENONFINITE (u, v), BSFIT_EDOMAIN
+**         (as bsfit_surface_eval) or BSFIT_ERANGE (a derivative overflows: high orders
+**         over tiny knot spans). */
 BSFIT_API bsfit_err bsfit_surface_derivs(const bsfit_surface *s, double u, double v, int k,
                                          double *out, bsfit_status *st);
 

@@ -1018,7 +1018,7 @@ bsfit_err bsfit_corners_detect(const double *pts, size_t m, int dim,
                        o.scale, o.sigma, o.min_angle_deg);
   sigma = o.sigma;
   if (sigma <= 0) {
-    e = bsfit_noise_sigma(pts, m, dim, o.closed, &sigma, st);
+    e = bsfit_noise_sigma(pts, m, dim, o.closed, &sigma, NULL, st);
     if (e != BSFIT_OK) return e;
   } else if (dim != 2 && dim != 3) {
     return bsfit__fail(st, BSFIT_EDIM, "corner detection needs 2D or 3D points, got dim %d", dim);

@@ -51,6 +51,23 @@ bsfit_err bsfit_curve_alloc(bsfit_curve *c, int degree, int dim, size_t n, int r
   return bsfit__ok(st);
 }
 
+/* A closed curve has no ends: a knot of multiplicity p + 1 anywhere, the seam included,
+** would break it into pieces (a jump the expanded form cannot express, and that every
+** operation on the period would mishandle). The stored vector holds p knots beyond each
+** end of the period, so a seam run of more than p copies shows there as a run > p. */
+static bsfit_err periodic_multiplicity(const bsfit_curve *c, bsfit_status *st) {
+  size_t i, run = 1, p = (size_t)c->degree;
+  for (i = 1; i < nknots_of(c); i++) {
+    run = c->knots[i] == c->knots[i - 1] ? run + 1 : 1;
+    if (run > p)
+      return bsfit__fail(st, BSFIT_EMULT,
+                         "knot %g of a closed curve has multiplicity %zu > degree %zu: the "
+                         "curve would not be continuous there",
+                         c->knots[i], run, p);
+  }
+  return BSFIT_OK;
+}
+
 static bsfit_err validate_periodic(const bsfit_curve *c, bsfit_status *st) {
   size_t i, p = (size_t)c->degree, N, d = (size_t)c->dim;
   const double *U = c->knots;
@@ -75,7 +92,7 @@ static bsfit_err validate_periodic(const bsfit_curve *c, bsfit_status *st) {
     if (fabs((U[i + N] - U[i + N - 1]) - (U[i] - U[i - 1])) > tol)
       return bsfit__fail(st, BSFIT_ENOTPERIODIC, "knot spans %zu and %zu differ", i - 1,
                          i + N - 1);
-  return BSFIT_OK;
+  return periodic_multiplicity(c, st);
 }
 
 bsfit_err bsfit_curve_validate(const bsfit_curve *c, bsfit_status *st) {
@@ -87,11 +104,17 @@ bsfit_err bsfit_curve_validate(const bsfit_curve *c, bsfit_status *st) {
     return bsfit__fail(st, BSFIT_EDIM, "dimension %d out of range 1..4", c->dim);
   e = bsfit_knots_validate(c->knots, nknots_of(c), c->degree, c->n, st);
   if (e != BSFIT_OK) return e;
-  if (!bsfit__all_finite(c->ctrl, c->n * (size_t)c->dim))
+  i = bsfit__first_out_of_range(c->ctrl, c->n * (size_t)c->dim);
+  if (i < c->n * (size_t)c->dim && !isfinite(c->ctrl[i]))
     return bsfit__fail(st, BSFIT_ENONFINITE, "control points contain NaN or Inf");
+  if (i < c->n * (size_t)c->dim)
+    return bsfit__fail(st, BSFIT_ERANGE, "control point %zu has a coordinate %g beyond 1e100",
+                       i / (size_t)c->dim, c->ctrl[i]);
+  /* normal, bounded weights: subnormal ones lose their digits, and with the coordinate
+  ** bound every homogeneous product w x stays below 1e200 */
   for (i = 0; c->weights && i < c->n; i++)
-    if (!isfinite(c->weights[i]) || !(c->weights[i] > 0))
-      return bsfit__fail(st, BSFIT_EWEIGHT, "weight %zu is %g (must be positive and finite)", i,
+    if (!(c->weights[i] >= BSFIT_WEIGHT_MIN && c->weights[i] <= BSFIT_WEIGHT_MAX))
+      return bsfit__fail(st, BSFIT_EWEIGHT, "weight %zu is %g (must be in [1e-100, 1e100])", i,
                          c->weights[i]);
   if (c->bezier && c->n != (size_t)c->degree + 1)
     return bsfit__fail(st, BSFIT_EINVAL, "a Bezier curve of degree %d needs %d control points",
@@ -258,8 +281,20 @@ void bsfit__curve_eval_unchecked(const bsfit_curve *c, double u, double *out) {
   }
 }
 
+int bsfit__curve_reach(const bsfit_curve *c, double u) {
+  double a, b;
+  if (c->periodic) return isfinite(u);
+  bsfit_curve_domain(c, &a, &b);
+  return u >= a - (b - a) && u <= b + (b - a);
+}
+
 bsfit_err bsfit_curve_eval(const bsfit_curve *c, double u, double *out, bsfit_status *st) {
   if (!isfinite(u)) return bsfit__fail(st, BSFIT_ENONFINITE, "parameter is not finite");
+  if (!bsfit__curve_reach(c, u))
+    return bsfit__fail(st, BSFIT_EDOMAIN,
+                       "parameter %g is more than one domain length outside the domain", u);
   bsfit__curve_eval_unchecked(c, u, out);
+  if (!bsfit__all_finite(out, (size_t)c->dim))
+    return bsfit__fail(st, BSFIT_ERANGE, "C(%g) overflows (extrapolated)", u);
   return bsfit__ok(st);
 }

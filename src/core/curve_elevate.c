@@ -1,22 +1,12 @@
 /*
 ** curve_elevate.c
-** Degree elevation: the Bézier formula for Bézier curves, NURBS Book A5.9 (elevation of
-** the Bézier segments with the knot removal folded in, so every distinct knot gains
-** exactly t copies) for clamped B-splines, and unrolling for periodic ones.
+** Degree elevation: the Bézier formula for Bézier curves, blossoms one degree at a time
+** for clamped B-splines (every distinct knot gains exactly t copies; stable next to
+** clustered knots, where A5.9's knot removal was not), and unrolling for periodic ones.
 */
 #include "curve_ops_internal.h"
 
 #include <string.h>
-
-static double binom(int n, int k) {
-  double r = 1.0;
-  int i;
-  for (i = 1; i <= k; i++) r = r * (double)(n - k + i) / (double)i;
-  return r;
-}
-
-static long lmin(long x, long y) { return x < y ? x : y; }
-static long lmax(long x, long y) { return x > y ? x : y; }
 
 /* dst = alpha x + (1 - alpha) y; dst may be x or y */
 static void lerp(double *dst, double alpha, const double *x, const double *y, size_t hd) {
@@ -65,139 +55,120 @@ static bsfit_err elevate_bezier(const bsfit_curve *c, int t, bsfit_curve *out, b
 /* }==================================================================== */
 
 /* {====================================================================
-** Clamped B-splines: NURBS Book A5.9
+** Clamped B-splines: one degree at a time, by blossoms
 ** ===================================================================== */
 
-/* Workspace of A5.9, one block: bezalfs (ph+1)x(p+1), alfs, bpts, ebpts, nextbpts. */
-typedef struct elev_work {
-  double *bez, *alfs, *bpts, *ebpts, *next;
-  size_t size;
-} elev_work;
+/* NURBS Book A5.9 folds knot removal into the elevation; removal divides by differences
+** of knots, and next to a cluster (a knot 1e-12 from another) it came back wrong by 9e-5,
+** or with negative weights. Here each elevated control point comes straight from the
+** blossom b of the curve (Ramshaw): raising p to p+1 on the knots v (each run of the old
+** vector one copy longer),
+**   Q_i = 1/(p+1) sum_{j=1..p+1} b(v_{i+1}, .., v_{i+j} left out, .., v_{i+p+1}),
+** with b the blossom of the polynomial piece on any span inside Q_i's support
+** [v_i, v_{i+p+2}]. De Boor's algorithm evaluates it with ratios whose denominators are at
+** least that span's length: taking the longest span of the support keeps every ratio
+** below about p + 2 whatever the clusters, so the result is exact to rounding. The cost is
+** O(p^3) per control point and per degree raised. */
 
-static bsfit_err work_alloc(elev_work *w, long p, long t, size_t hd, const bsfit_allocator *a,
-                            bsfit_status *st) {
-  size_t ph = (size_t)(p + t), np = (size_t)p;
-  size_t nb = (ph + 1) * (np + 1), na = np + 1, n1 = (np + 1) * hd, n2 = (ph + 1) * hd;
-  memset(w, 0, sizeof *w);
-  w->size = (nb + na + n1 + n2 + n1) * sizeof(double);
-  w->bez = bsfit__alloc(a, w->size);
-  if (w->bez == NULL) return bsfit__fail(st, BSFIT_ENOMEM, "out of memory for degree elevation");
-  memset(w->bez, 0, w->size);
-  w->alfs = w->bez + nb;
-  w->bpts = w->alfs + na;
-  w->ebpts = w->bpts + n1;
-  w->next = w->ebpts + n2;
-  return BSFIT_OK;
+/* The blossom of h's piece on span s at x[0..p-1], homogeneous, into out (work: (p+1)hd) */
+static void blossom(const bsfit__hcurve *h, size_t s, const double *x, double *work,
+                    double *out) {
+  size_t p = (size_t)h->p, hd = (size_t)h->hd, r, j;
+  const double *U = h->U;
+  memcpy(work, h->P + (s - p) * hd, (p + 1) * hd * sizeof(double));
+  for (r = 1; r <= p; r++)
+    for (j = p; j >= r; j--) {
+      size_t i = s - p + j;
+      double al = (x[r - 1] - U[i]) / (U[i + p + 1 - r] - U[i]);
+      lerp(work + j * hd, al, work + j * hd, work + (j - 1) * hd, hd);
+    }
+  memcpy(out, work + p * hd, hd * sizeof(double));
 }
 
-/* Coefficients of the Bézier degree elevation p -> ph: bez[i][j] = C(p,j) C(t,i-j) / C(ph,i). */
-static void bezier_alphas(long p, long t, double *bez) {
-  long ph = p + t, i, j;
-  for (i = 0; i <= ph; i++)
-    for (j = lmax(0, i - t); j <= lmin(p, i); j++)
-      bez[i * (p + 1) + j] = binom((int)p, (int)j) * binom((int)t, (int)(i - j)) /
-                             binom((int)ph, (int)i);
+/* The longest non-empty span s of h (p <= s < n) inside [lo, hi]; lo < hi are knots.
+** *cur: the last s with U[s] <= lo, carried from the previous call (lo never decreases
+** from one control point to the next): a step or two instead of a binary search. */
+static size_t longest_span(const bsfit__hcurve *h, double lo, double hi, size_t *cur) {
+  size_t s, best;
+  double len = -1.0;
+  while (*cur + 1 < h->n && h->U[*cur + 1] <= lo) (*cur)++;
+  s = best = *cur;
+  for (; s < h->n && h->U[s] < hi; s++) {
+    double w = h->U[s + 1] - h->U[s];
+    if (w > len && h->U[s] >= lo && h->U[s + 1] <= hi) {
+      len = w;
+      best = s;
+    }
+  }
+  return best;
 }
 
-/* Number of knots of the elevated vector: each run of equal knots gains t copies. */
-static size_t elevated_knots(const bsfit__hcurve *h, long t) {
+/* Number of knots after one elevation: each run of equal knots gains a copy. */
+static size_t elevated_knots(const bsfit__hcurve *h) {
   size_t i, nk = h->n + (size_t)h->p + 1, runs = 1;
   for (i = 1; i < nk; i++) runs += h->U[i] != h->U[i - 1];
-  return nk + runs * (size_t)t;
+  return nk + runs;
 }
 
-/* A5.9 on a clamped curve h (interior multiplicities <= p) into e2. Indices follow the
-** book: n is the last control point, m the last knot. */
+/* Q_i from the blossom (work: (p+2) hd + p + 1 doubles) */
+static void elevated_point(const bsfit__hcurve *h, const double *V, size_t i, size_t *cur,
+                           double *work, double *Q) {
+  size_t p = (size_t)h->p, hd = (size_t)h->hd, j, k, c;
+  size_t s = longest_span(h, V[i], V[i + p + 2], cur);
+  double *x = work + (p + 2) * hd, *b = work + (p + 1) * hd;
+  memset(Q, 0, hd * sizeof(double));
+  for (j = 0; j <= p; j++) {
+    for (k = 0, c = 0; k <= p; k++)
+      if (k != j) x[c++] = V[i + 1 + k];
+    blossom(h, s, x, work, b);
+    for (c = 0; c < hd; c++) Q[c] += b[c];
+  }
+  for (c = 0; c < hd; c++) Q[c] /= (double)(p + 1);
+}
+
+/* h (clamped, interior multiplicities <= p) raised by one degree into e2 */
+static bsfit_err elevate_once(const bsfit__hcurve *h, bsfit__hcurve *e2, bsfit_status *st) {
+  size_t nk = h->n + (size_t)h->p + 1, nv = elevated_knots(h), hd = (size_t)h->hd, i, k = 0;
+  size_t cur = (size_t)h->p;
+  size_t wsize = ((size_t)h->p + 3) * hd + (size_t)h->p + 1;
+  double *work;
+  bsfit_err e = bsfit__hc_alloc(e2, h->p + 1, h->hd, nv - (size_t)h->p - 2, &h->alloc, st);
+  if (e != BSFIT_OK) return e;
+  work = bsfit__alloc(&h->alloc, wsize * sizeof(double));
+  if (work == NULL) {
+    bsfit__hc_free(e2);
+    return bsfit__fail(st, BSFIT_ENOMEM, "out of memory for degree elevation");
+  }
+  for (i = 0; i < nk; i++) {
+    e2->U[k++] = h->U[i];
+    if (i + 1 == nk || h->U[i + 1] != h->U[i]) e2->U[k++] = h->U[i];
+  }
+  for (i = 0; i < e2->n; i++) {
+    if ((i & 4095) == 4095 && bsfit__interrupted(&h->alloc)) {
+      e = bsfit__fail(st, BSFIT_EINTR, "degree elevation interrupted");
+      break;
+    }
+    elevated_point(h, e2->U, i, &cur, work, e2->P + i * hd);
+  }
+  bsfit__free(&h->alloc, work, wsize * sizeof(double));
+  if (e != BSFIT_OK) bsfit__hc_free(e2);
+  return e;
+}
+
+/* h raised by t degrees into e2, one at a time */
 static bsfit_err elevate_clamped(const bsfit__hcurve *h, long t, bsfit__hcurve *e2,
                                  bsfit_status *st) {
-  const long p = h->p, n = (long)h->n - 1, m = n + p + 1, ph = p + t;
-  const size_t hd = (size_t)h->hd, bsz = hd * sizeof(double);
-  const double *U = h->U, *Pw = h->P;
-  double *Uh, *Qw, ua = U[0], ub;
-  long mh = ph, kind = ph + 1, r = -1, a = p, b = p + 1, cind = 1, i, j, k;
-  size_t nkh = elevated_knots(h, t);
-  elev_work w;
-  bsfit_err e = bsfit__hc_alloc(e2, (int)ph, h->hd, nkh - (size_t)ph - 1, &h->alloc, st);
-  if (e != BSFIT_OK) return e;
-  e = work_alloc(&w, p, t, hd, &h->alloc, st);
-  if (e != BSFIT_OK) {
-    bsfit__hc_free(e2);
-    return e;
+  bsfit__hcurve cur, next;
+  bsfit_err e = BSFIT_OK;
+  long k;
+  bsfit__hc_init(&cur);
+  for (k = 0; k < t && e == BSFIT_OK; k++) {
+    e = elevate_once(k == 0 ? h : &cur, &next, st);
+    bsfit__hc_free(&cur);
+    if (e == BSFIT_OK) cur = next;
   }
-#define PT(arr, idx) ((arr) + (size_t)(idx) * hd)
-  Uh = e2->U;
-  Qw = e2->P;
-  bezier_alphas(p, t, w.bez);
-  memcpy(Qw, Pw, bsz);
-  for (i = 0; i <= ph; i++) Uh[i] = ua;
-  memcpy(w.bpts, Pw, (size_t)(p + 1) * bsz);
-  while (b < m) {
-    long mul, oldr, lbz, rbz;
-    i = b;
-    while (b < m && U[b] == U[b + 1]) b++;
-    mul = b - i + 1;
-    mh += mul + t;
-    ub = U[b];
-    oldr = r;
-    r = p - mul;
-    lbz = oldr > 0 ? (oldr + 2) / 2 : 1;
-    rbz = r > 0 ? ph - (r + 1) / 2 : ph;
-    if (r > 0) { /* insert ub r times: the Bézier segment [ua, ub] */
-      double numer = ub - ua;
-      for (k = p; k > mul; k--) w.alfs[k - mul - 1] = numer / (U[a + k] - ua);
-      for (j = 1; j <= r; j++) {
-        long save = r - j, s = mul + j;
-        for (k = p; k >= s; k--)
-          lerp(PT(w.bpts, k), w.alfs[k - s], PT(w.bpts, k), PT(w.bpts, k - 1), hd);
-        memcpy(PT(w.next, save), PT(w.bpts, p), bsz);
-      }
-    }
-    for (i = lbz; i <= ph; i++) { /* elevate the segment */
-      double *E = PT(w.ebpts, i);
-      size_t q;
-      memset(E, 0, bsz);
-      for (j = lmax(0, i - t); j <= lmin(p, i); j++)
-        for (q = 0; q < hd; q++) E[q] += w.bez[i * (p + 1) + j] * PT(w.bpts, j)[q];
-    }
-    if (oldr > 1) { /* remove the knot ua oldr times */
-      long first = kind - 2, last = kind, tr;
-      double den = ub - ua, bet = (ub - Uh[kind - 1]) / den;
-      for (tr = 1; tr < oldr; tr++) {
-        long ii = first, jj = last, kj = jj - kind + 1;
-        while (jj - ii > tr) {
-          if (ii < cind) {
-            double alf = (ub - Uh[ii]) / (ua - Uh[ii]);
-            lerp(PT(Qw, ii), alf, PT(Qw, ii), PT(Qw, ii - 1), hd);
-          }
-          if (jj >= lbz) {
-            double gam = (jj - tr <= kind - ph + oldr) ? (ub - Uh[jj - tr]) / den : bet;
-            lerp(PT(w.ebpts, kj), gam, PT(w.ebpts, kj), PT(w.ebpts, kj + 1), hd);
-          }
-          ii++;
-          jj--;
-          kj--;
-        }
-        first--;
-        last++;
-      }
-    }
-    if (a != p)
-      for (i = 0; i < ph - oldr; i++) Uh[kind++] = ua;
-    for (j = lbz; j <= rbz; j++) memcpy(PT(Qw, cind++), PT(w.ebpts, j), bsz);
-    if (b < m) { /* next segment */
-      for (j = 0; j < r; j++) memcpy(PT(w.bpts, j), PT(w.next, j), bsz);
-      for (j = r; j <= p; j++) memcpy(PT(w.bpts, j), PT(Pw, b - p + j), bsz);
-      a = b;
-      b++;
-      ua = ub;
-    } else {
-      for (i = 0; i <= ph; i++) Uh[kind + i] = ub;
-    }
-  }
-#undef PT
-  bsfit__free(&h->alloc, w.bez, w.size);
-  (void)mh; /* mh + 1 == nkh: counted beforehand by elevated_knots */
-  return BSFIT_OK;
+  if (e == BSFIT_OK) *e2 = cur;
+  return e;
 }
 
 /* }==================================================================== */
@@ -283,6 +254,7 @@ bsfit_err bsfit_curve_elevate(const bsfit_curve *c, int t, bsfit_curve *out, bsf
   /* a continuous degree-0 spline has one span: a constant, elevated like a Bézier curve */
   if (e == BSFIT_OK && (c->bezier || c->degree == 0)) e = elevate_bezier(c, t, &tmp, st);
   else if (e == BSFIT_OK) e = elevate_spline(c, t, &tmp, st);
+  if (e == BSFIT_OK) e = bsfit__curve_result(&tmp, "degree elevation", st);
   if (e != BSFIT_OK) return e;
   bsfit_curve_move(&tmp, out);
   return bsfit__ok(st);

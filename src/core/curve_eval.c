@@ -72,9 +72,16 @@ bsfit_err bsfit_curve_derivs(const bsfit_curve *c, double u, int k, double *out,
   if (k < 0) return bsfit__fail(st, BSFIT_EINVAL, "derivative order k = %d is negative", k);
   if (out == NULL) return bsfit__fail(st, BSFIT_EINVAL, "no output array");
   if (!isfinite(u)) return bsfit__fail(st, BSFIT_ENONFINITE, "parameter u is not finite");
+  if (!bsfit__curve_reach(c, u))
+    return bsfit__fail(st, BSFIT_EDOMAIN,
+                       "parameter %g is more than one domain length outside the domain", u);
   u = bsfit__curve_wrap(c, u);
   s = bsfit_knots_find_span(c->knots, c->n, c->degree, u);
   bsfit__curve_derivs_span(c, s, u, k, out);
+  /* the k-th derivative grows like 1 / span^k: over knots 1e-15 apart it can pass
+  ** DBL_MAX even for bounded control points */
+  if (!bsfit__all_finite(out, (size_t)(k + 1) * (size_t)c->dim))
+    return bsfit__fail(st, BSFIT_ERANGE, "derivative of order <= %d at u = %g overflows", k, u);
   return bsfit__ok(st);
 }
 
@@ -249,11 +256,20 @@ bsfit_err bsfit_curve_eval_many(const bsfit_curve *c, const double *u, size_t m,
                                 bsfit_status *st) {
   bsfit_err e = bsfit__curve_check(c, st);
   if (e != BSFIT_OK) return e;
+  size_t i;
   if (m > 0 && (u == NULL || out == NULL))
     return bsfit__fail(st, BSFIT_EINVAL, "no parameter or output array");
-  if (c->degree == 3 && c->weights == NULL && c->dim == 2) return eval_cubic(c, u, m, out, 2, st);
-  if (c->degree == 3 && c->weights == NULL && c->dim == 3) return eval_cubic(c, u, m, out, 3, st);
-  return eval_general(c, u, m, out, st);
+  for (i = 0; !c->periodic && i < m; i++) /* NaN passes here: the evaluators name it */
+    if (isfinite(u[i]) && !bsfit__curve_reach(c, u[i]))
+      return bsfit__fail(st, BSFIT_EDOMAIN,
+                         "parameter u[%zu] = %g is more than one domain length outside the "
+                         "domain", i, u[i]);
+  if (c->degree == 3 && c->weights == NULL && c->dim == 2) e = eval_cubic(c, u, m, out, 2, st);
+  else if (c->degree == 3 && c->weights == NULL && c->dim == 3) e = eval_cubic(c, u, m, out, 3, st);
+  else e = eval_general(c, u, m, out, st);
+  if (e == BSFIT_OK && !bsfit__all_finite(out, m * (size_t)c->dim))
+    return bsfit__fail(st, BSFIT_ERANGE, "an extrapolated point overflows");
+  return e;
 }
 
 /* }==================================================================== */

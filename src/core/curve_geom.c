@@ -51,12 +51,15 @@ typedef struct len_ctx {
   double x[GL_ORDER], w[GL_ORDER];
 } len_ctx;
 
+/* |C'(u)|, scaled like hypot: squares of a curve 1e-200 across underflowed to a length 0 */
 static double speed(const len_ctx *L, double u) {
-  double D[2 * 4], v = 0.0;
+  double D[2 * 4], v = 0.0, big = 0.0;
   size_t q, d = (size_t)L->c->dim;
   bsfit__curve_derivs_span(L->c, L->s, u, 1, D);
-  for (q = 0; q < d; q++) v += D[d + q] * D[d + q];
-  return sqrt(v);
+  for (q = 0; q < d; q++) big = fmax(big, fabs(D[d + q]));
+  if (big == 0.0) return 0.0;
+  for (q = 0; q < d; q++) v += (D[d + q] / big) * (D[d + q] / big);
+  return big * sqrt(v);
 }
 
 static double gl_integral(const len_ctx *L, double lo, double hi) {
@@ -106,6 +109,24 @@ bsfit_err bsfit_curve_length(const bsfit_curve *c, double a, double b, double *l
 ** Closest point and projection
 ** ===================================================================== */
 
+/* The searches compare squared distances: a curve whose control points all lie within
+** BSFIT_EXTENT_MIN of each other (but not on one point) would have them underflow to 0
+** and every sample would look as close as the next. Refused rather than answered. */
+#define BSFIT_EXTENT_MIN 1e-100
+
+static bsfit_err check_extent(const bsfit_curve *c, bsfit_status *st) {
+  size_t i, k, d = (size_t)c->dim;
+  double ext = 0.0;
+  for (i = 1; i < c->n; i++)
+    for (k = 0; k < d; k++) ext = fmax(ext, fabs(c->ctrl[i * d + k] - c->ctrl[k]));
+  if (ext > 0.0 && ext < BSFIT_EXTENT_MIN)
+    return bsfit__fail(st, BSFIT_ERANGE,
+                       "the curve is %g across, below 1e-100: its squared distances would "
+                       "underflow (scale the data)",
+                       ext);
+  return BSFIT_OK;
+}
+
 /* Where a parameter may go: [lo, hi], clamped for open curves; periodic curves are
 ** evaluated at any u (wrapped) and only the final answer is wrapped. A polynomial cubic
 ** is evaluated span by span as a polynomial (`polys`: converted on a span's first use),
@@ -115,6 +136,7 @@ typedef struct span_polys {
   double *coef;         /* per span s >= 3: 4 dim coefficients (bsfit__cubic_span_poly) */
   unsigned char *ready; /* per span: converted yet */
   size_t bytes;         /* of the block holding both */
+  const bsfit_allocator *a; /* what coef was allocated with */
 } span_polys;
 
 typedef struct foot_ctx {
@@ -136,11 +158,12 @@ static void foot_init(foot_ctx *F, const bsfit_curve *c, span_polys *poly) {
 
 /* Room for the span polynomials of a polynomial cubic; NULL when c is not one or out of
 ** memory (the basis path then serves). Free with polys_free. */
-static span_polys *polys_new(const bsfit_curve *c, span_polys *sp) {
+static span_polys *polys_new(const bsfit_curve *c, const bsfit_allocator *a, span_polys *sp) {
   size_t n = c->n, d = (size_t)c->dim;
   if (c->degree != 3 || c->weights != NULL || c->bezier) return NULL;
+  sp->a = a;
   sp->bytes = n * 4 * d * sizeof(double) + n;
-  sp->coef = bsfit__alloc(NULL, sp->bytes);
+  sp->coef = bsfit__alloc(a, sp->bytes);
   if (sp->coef == NULL) return NULL;
   sp->ready = (unsigned char *)(sp->coef + n * 4 * d);
   memset(sp->ready, 0, n);
@@ -148,7 +171,7 @@ static span_polys *polys_new(const bsfit_curve *c, span_polys *sp) {
 }
 
 static void polys_free(span_polys *sp) {
-  if (sp) bsfit__free(NULL, sp->coef, sp->bytes);
+  if (sp) bsfit__free(sp->a, sp->coef, sp->bytes);
 }
 
 /* C, C', C'' at u in span s from the span's polynomial (d: the dimension). */
@@ -277,19 +300,20 @@ static double closest_from(foot_ctx *F, double v, double h, double *d2) {
 }
 
 bsfit_err bsfit_curve_closest(const bsfit_curve *c, const double *P, double *u, double *dist,
-                              bsfit_status *st) {
+                              const bsfit_allocator *al, bsfit_status *st) {
   foot_ctx F;
   span_polys sp;
   double a, b, D[3 * 4], best = INFINITY, ubest = 0.0, hbest = 0.0, d2;
   size_t s, i, p;
   bsfit_err e = bsfit_curve_validate(c, st);
+  if (e == BSFIT_OK) e = check_extent(c, st);
   if (e != BSFIT_OK) return e;
   if (P == NULL || u == NULL) return bsfit__fail(st, BSFIT_EINVAL, "no point or no output");
   if (!bsfit__all_finite(P, (size_t)c->dim))
     return bsfit__fail(st, BSFIT_ENONFINITE, "point P is not finite");
   bsfit_curve_domain(c, &a, &b);
   p = (size_t)c->degree;
-  foot_init(&F, c, polys_new(c, &sp));
+  foot_init(&F, c, polys_new(c, al, &sp));
   F.P = P;
   F.lo = a;
   F.hi = b;
@@ -323,30 +347,51 @@ bsfit_err bsfit_curve_closest(const bsfit_curve *c, const double *P, double *u, 
 ** with the samples evaluated once for all the points, and each point's nearest sample
 ** found through a spatial index (nearest_sample.c) that picks exactly the sample the
 ** linear scan of bsfit_curve_closest picks, ties included. */
+/* Newton from each point's nearest sample, looking at the interrupt flag every 4096 */
+static bsfit_err closest_loop(foot_ctx *F, const bsfit__nearest *nn, const double *par,
+                              const double *step, const double *pts, size_t m, double *u,
+                              double *dist, const bsfit_allocator *al, bsfit_status *st) {
+  const bsfit_curve *c = F->c;
+  size_t i, d = (size_t)c->dim;
+  for (i = 0; i < m; i++) {
+    const double *P = pts + i * d;
+    double d2;
+    size_t kb = bsfit__nearest_find(nn, P);
+    if ((i & 4095) == 4095 && bsfit__interrupted(al))
+      return bsfit__fail(st, BSFIT_EINTR, "closest points interrupted at point %zu", i);
+    F->P = P;
+    F->lo = c->periodic ? par[kb] - step[kb] : fmax(par[kb] - step[kb], F->a);
+    F->hi = c->periodic ? par[kb] + step[kb] : fmin(par[kb] + step[kb], F->b);
+    u[i] = bsfit__curve_wrap(c, closest_from(F, par[kb], step[kb], &d2));
+    if (dist) dist[i] = sqrt(d2);
+  }
+  return BSFIT_OK;
+}
+
 bsfit_err bsfit_curve_closest_many(const bsfit_curve *c, const double *pts, size_t m, double *u,
-                                   double *dist, bsfit_status *st) {
+                                   double *dist, const bsfit_allocator *al, bsfit_status *st) {
   foot_ctx F;
-  double a, b, D[3 * 4], *smp, *par, *step;
+  double D[3 * 4], *smp, *par, *step;
   size_t s, i, k, K = 0, p, d, bytes;
   span_polys sp;
   bsfit__nearest nn;
   bsfit_err e = bsfit_curve_validate(c, st);
+  if (e == BSFIT_OK) e = check_extent(c, st);
   if (e != BSFIT_OK) return e;
   if (m > 0 && (pts == NULL || u == NULL)) return bsfit__fail(st, BSFIT_EINVAL, "no points or no output");
   if (!bsfit__all_finite(pts, m * (size_t)c->dim))
     return bsfit__fail(st, BSFIT_ENONFINITE, "the points contain NaN or Inf");
   if (m == 0) return bsfit__ok(st); /* nothing to sample the curve for */
-  bsfit_curve_domain(c, &a, &b);
   p = (size_t)c->degree;
   d = (size_t)c->dim;
   for (s = p; s < c->n; s++)
     if (c->knots[s + 1] > c->knots[s]) K += CLOSEST_SAMPLES + 1;
   bytes = K * (d + 2) * sizeof(double);
-  smp = bsfit__alloc(NULL, bytes);
+  smp = bsfit__alloc(al, bytes);
   if (smp == NULL) return bsfit__fail(st, BSFIT_ENOMEM, "out of memory for %zu samples", K);
   par = smp + K * d;
   step = par + K;
-  foot_init(&F, c, polys_new(c, &sp));
+  foot_init(&F, c, polys_new(c, al, &sp));
   F.P = pts; /* unused by the sampling below */
   for (s = p, k = 0; s < c->n; s++) {
     double h = (c->knots[s + 1] - c->knots[s]) / CLOSEST_SAMPLES;
@@ -357,35 +402,25 @@ bsfit_err bsfit_curve_closest_many(const bsfit_curve *c, const double *pts, size
       memcpy(smp + k * d, D, d * sizeof(double));
     }
   }
-  e = bsfit__nearest_init(&nn, smp, K, d, m, st);
-  if (e != BSFIT_OK) {
-    polys_free(F.poly);
-    bsfit__free(NULL, smp, bytes);
-    return e;
+  e = bsfit__nearest_init(&nn, smp, K, d, m, al, st);
+  if (e == BSFIT_OK) {
+    e = closest_loop(&F, &nn, par, step, pts, m, u, dist, al, st);
+    bsfit__nearest_free(&nn);
   }
-  for (i = 0; i < m; i++) {
-    const double *P = pts + i * d;
-    double d2;
-    size_t kb = bsfit__nearest_find(&nn, P);
-    F.P = P;
-    F.lo = c->periodic ? par[kb] - step[kb] : fmax(par[kb] - step[kb], a);
-    F.hi = c->periodic ? par[kb] + step[kb] : fmin(par[kb] + step[kb], b);
-    u[i] = bsfit__curve_wrap(c, closest_from(&F, par[kb], step[kb], &d2));
-    if (dist) dist[i] = sqrt(d2);
-  }
-  bsfit__nearest_free(&nn);
   polys_free(F.poly);
-  bsfit__free(NULL, smp, bytes);
-  return bsfit__ok(st);
+  bsfit__free(al, smp, bytes);
+  return e == BSFIT_OK ? bsfit__ok(st) : e;
 }
 
 bsfit_err bsfit_curve_project_many(const bsfit_curve *c, const double *pts, size_t m, double *u,
-                                   double *dist, int iters, bsfit_status *st) {
+                                   double *dist, int iters, const bsfit_allocator *al,
+                                   bsfit_status *st) {
   foot_ctx F;
   double a, b, d2;
   size_t i, d;
   span_polys sp;
   bsfit_err e = bsfit__curve_check(c, st);
+  if (e == BSFIT_OK) e = check_extent(c, st);
   if (e != BSFIT_OK) return e;
   if (m > 0 && (pts == NULL || u == NULL))
     return bsfit__fail(st, BSFIT_EINVAL, "no points or no parameters");
@@ -395,8 +430,12 @@ bsfit_err bsfit_curve_project_many(const bsfit_curve *c, const double *pts, size
     if (!bsfit__all_finite(pts + i * d, d) || !isfinite(u[i]))
       return bsfit__fail(st, BSFIT_ENONFINITE, "point %zu or its parameter is not finite", i);
   bsfit_curve_domain(c, &a, &b);
-  foot_init(&F, c, polys_new(c, &sp));
+  foot_init(&F, c, polys_new(c, al, &sp));
   for (i = 0; i < m; i++) {
+    if ((i & 4095) == 4095 && bsfit__interrupted(al)) {
+      polys_free(F.poly);
+      return bsfit__fail(st, BSFIT_EINTR, "projection interrupted at point %zu", i);
+    }
     F.P = pts + i * d;
     /* open: the domain; periodic: one period either side (wrapped at the end) */
     F.lo = c->periodic ? u[i] - (b - a) : a;
@@ -414,7 +453,8 @@ bsfit_err bsfit_curve_project_many(const bsfit_curve *c, const double *pts, size
 ** Sampling
 ** ===================================================================== */
 
-bsfit_err bsfit_curve_sample(const bsfit_curve *c, size_t k, double *out, bsfit_status *st) {
+bsfit_err bsfit_curve_sample(const bsfit_curve *c, size_t k, double *out,
+                             const bsfit_allocator *al, bsfit_status *st) {
   double ub[256], a, b, steps;
   size_t i, j, d;
   bsfit_err e = bsfit__curve_check(c, st);
@@ -427,6 +467,8 @@ bsfit_err bsfit_curve_sample(const bsfit_curve *c, size_t k, double *out, bsfit_
   /* in chunks through the batch evaluator: no allocation */
   for (i = 0; i < k; i += j) {
     size_t nb = k - i < 256 ? k - i : 256;
+    if ((i & 4095) == 0 && i > 0 && bsfit__interrupted(al))
+      return bsfit__fail(st, BSFIT_EINTR, "sampling interrupted at sample %zu", i);
     for (j = 0; j < nb; j++) {
       size_t idx = i + j;
       ub[j] = (!c->periodic && idx == k - 1) ? b : a + (b - a) * ((double)idx / steps);

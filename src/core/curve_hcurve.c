@@ -87,16 +87,32 @@ bsfit_err bsfit__hc_unroll(const bsfit_curve *c, bsfit__hcurve *h, bsfit_status 
 ** Refinement and pieces
 ** ===================================================================== */
 
+/* What A5.4 assumes and, when it does not hold, overruns its arrays: U sorted, X sorted
+** and finite inside the domain [U[q], U[n]], no knot above multiplicity q + 1 after. */
+static int refine_args_ok(int q, size_t n, const double *U, const double *X, size_t r) {
+  size_t p = (size_t)q, i, j;
+  for (i = 1; i < n + p + 1; i++)
+    if (!(U[i] >= U[i - 1])) return 0;
+  if (!(U[p] < U[n])) return 0;
+  for (i = 0; i < r; i = j) {
+    if (!(X[i] >= U[p] && X[i] <= U[n]) || (i > 0 && !(X[i] > X[i - 1]))) return 0;
+    for (j = i; j < r && X[j] == X[i]; j++) {}
+    if ((size_t)bsfit_knots_multiplicity(U, n + p + 1, X[i]) + (j - i) > p + 1) return 0;
+  }
+  return 1;
+}
+
 /* NURBS Book A5.4 with the book's last index n-1 and r knots X (declared in
 ** curve_ops_internal.h: also the exact filter's refinement of surface rows). */
-void bsfit__refine_raw(int q, size_t n, size_t d, const double *U, const double *P,
-                       const double *X, size_t r, double *Ub, double *Q) {
+int bsfit__refine_raw(int q, size_t n, size_t d, const double *U, const double *P,
+                      const double *X, size_t r, double *Ub, double *Q) {
   size_t p = (size_t)q, m = n + p, a, b, j, row = d * sizeof(double);
   ptrdiff_t i, k, jj;
+  if (!refine_args_ok(q, n, U, X, r)) return 0;
   if (r == 0) {
     memcpy(Ub, U, (n + p + 1) * sizeof(double));
     memcpy(Q, P, n * row);
-    return;
+    return 1;
   }
   a = bsfit_knots_find_span(U, n, q, X[0]);
   b = bsfit_knots_find_span(U, n, q, X[r - 1]) + 1;
@@ -128,6 +144,7 @@ void bsfit__refine_raw(int q, size_t n, size_t d, const double *U, const double 
     Ub[k] = X[jj];
     k--;
   }
+  return 1;
 }
 
 /* }==================================================================== */
@@ -136,7 +153,12 @@ bsfit_err bsfit__hc_refine(const bsfit__hcurve *h, const double *X, size_t nx,
                            bsfit__hcurve *out, bsfit_status *st) {
   bsfit_err e = bsfit__hc_alloc(out, h->p, h->hd, h->n + nx, &h->alloc, st);
   if (e != BSFIT_OK) return e;
-  bsfit__refine_raw(h->p, h->n, (size_t)h->hd, h->U, h->P, X, nx, out->U, out->P);
+  if (!bsfit__refine_raw(h->p, h->n, (size_t)h->hd, h->U, h->P, X, nx, out->U, out->P)) {
+    bsfit__hc_free(out);
+    return bsfit__fail(st, BSFIT_EMULT,
+                       "knot refinement: knots outside the domain, unsorted or above "
+                       "multiplicity degree + 1");
+  }
   return BSFIT_OK;
 }
 

@@ -22,6 +22,14 @@ bsfit_err bsfit__curve_check(const bsfit_curve *c, bsfit_status *st) {
   return BSFIT_OK;
 }
 
+bsfit_err bsfit__curve_result(bsfit_curve *tmp, const char *op, bsfit_status *st) {
+  bsfit_status vs;
+  bsfit_err e = bsfit_curve_validate(tmp, &vs);
+  if (e == BSFIT_OK) return BSFIT_OK;
+  bsfit_curve_free(tmp);
+  return bsfit__fail(st, e, "%s: the result would be invalid (%.80s)", op, vs.msg);
+}
+
 /* {====================================================================
 ** Knot refinement
 ** ===================================================================== */
@@ -125,6 +133,7 @@ bsfit_err bsfit_curve_refine(const bsfit_curve *c, const double *X, size_t nx, b
   bsfit_curve_init(&tmp);
   e = c->periodic && nx > 0 ? refine_periodic(c, X, nx, &tmp, st)
                             : refine_open(c, X, nx, &tmp, st);
+  if (e == BSFIT_OK) e = bsfit__curve_result(&tmp, "knot insertion", st);
   if (e != BSFIT_OK) return e;
   bsfit_curve_move(&tmp, out);
   return bsfit__ok(st);
@@ -205,6 +214,7 @@ bsfit_err bsfit_curve_split(const bsfit_curve *c, double u, bsfit_curve *left,
   bsfit_curve_init(&r);
   if (c->periodic) {
     e = periodic_piece(c, bsfit__curve_wrap(c, u), &l, st);
+    if (e == BSFIT_OK) e = bsfit__curve_result(&l, "split", st);
     if (e != BSFIT_OK) return e;
     bsfit_curve_move(&l, left);
     if (right != NULL) bsfit_curve_free(right);
@@ -215,8 +225,11 @@ bsfit_err bsfit_curve_split(const bsfit_curve *c, double u, bsfit_curve *left,
                        a, b);
   e = open_piece(c, a, u, &l, st);
   if (e == BSFIT_OK) e = open_piece(c, u, b, &r, st);
+  if (e == BSFIT_OK) e = bsfit__curve_result(&l, "split", st);
+  if (e == BSFIT_OK) e = bsfit__curve_result(&r, "split", st);
   if (e != BSFIT_OK) {
     bsfit_curve_free(&l);
+    bsfit_curve_free(&r);
     return e;
   }
   bsfit_curve_move(&l, left);
@@ -259,6 +272,10 @@ bsfit_err bsfit_curve_reverse(const bsfit_curve *c, bsfit_curve *out, bsfit_stat
   }
   tmp.periodic = c->periodic;
   tmp.bezier = c->bezier;
+  /* a knot within an ulp of an end mirrors onto the end (1 - 2e-99 == 1) and may pass
+  ** its multiplicity: refuse rather than return an invalid curve */
+  e = bsfit__curve_result(&tmp, "reverse", st);
+  if (e != BSFIT_OK) return e;
   bsfit_curve_move(&tmp, out);
   return bsfit__ok(st);
 }

@@ -34,9 +34,11 @@ bsfit_err bsfit__hc_unroll(const bsfit_curve *c, bsfit__hcurve *h, bsfit_status 
 /* Knot refinement (NURBS Book A5.4) on raw arrays, for curves and for surface nets
 ** filtered as curves of rows: inserts the r sorted knots X (inside the domain,
 ** multiplicities already checked) into the degree-q spline (U, P) of n points of d
-** doubles each; Ub gets n+r+q+1 knots, Q n+r points (caller-owned). */
-void bsfit__refine_raw(int q, size_t n, size_t d, const double *U, const double *P,
-                       const double *X, size_t r, double *Ub, double *Q);
+** doubles each; Ub gets n+r+q+1 knots, Q n+r points (caller-owned). Returns 0, touching
+** neither Ub nor Q, when U is not sorted, X is not sorted or leaves the domain, or a
+** knot would pass multiplicity q+1; else 1. */
+int bsfit__refine_raw(int q, size_t n, size_t d, const double *U, const double *P,
+                      const double *X, size_t r, double *Ub, double *Q);
 /* Knot refinement (A5.4): X sorted, within h's domain, multiplicities already checked. */
 bsfit_err bsfit__hc_refine(const bsfit__hcurve *h, const double *X, size_t nx,
                            bsfit__hcurve *out, bsfit_status *st);
@@ -73,15 +75,23 @@ typedef struct bsfit__nearest {
   size_t *idx;       /* K: the sample index of each tree position */
   void *block;       /* pts, box and idx in one allocation of `bytes` */
   size_t bytes;
+  bsfit_allocator alloc; /* what block was allocated with */
 } bsfit__nearest;
 
-/* Builds the index for about `queries` look-ups. BSFIT_ENOMEM (nn then needs no free);
-** on success free it with bsfit__nearest_free (NULL-safe, idempotent). */
+/* Builds the index for about `queries` look-ups, its memory from a (NULL = realloc).
+** BSFIT_ENOMEM (nn then needs no free); on success free it with bsfit__nearest_free
+** (NULL-safe, idempotent). */
 bsfit_err bsfit__nearest_init(bsfit__nearest *nn, const double *smp, size_t K, size_t d,
-                              size_t queries, bsfit_status *st);
+                              size_t queries, const bsfit_allocator *a, bsfit_status *st);
 /* The index of the nearest sample to P (d finite doubles); K >= 1. */
 size_t bsfit__nearest_find(const bsfit__nearest *nn, const double *P);
 void bsfit__nearest_free(bsfit__nearest *nn);
+
+/* The post-condition of every operation that builds a curve: tmp passes
+** bsfit_curve_validate (finite, in range, knots sound). Else tmp is freed and the
+** validation's code returned, its message prefixed by what the operation was. O(n), as
+** the operations are. */
+bsfit_err bsfit__curve_result(bsfit_curve *tmp, const char *op, bsfit_status *st);
 
 /* Cheap O(1) checks of a curve handed to an operation: not NULL, arrays present,
 ** degree and dimension in range. The full O(n) check is bsfit_curve_validate. */

@@ -81,15 +81,17 @@ static size_t next_index(size_t i, long j, size_t n, int cyclic) {
   return j + 1 <= 0 ? 0 : (i + 1 < n ? i + 1 : n - 1);
 }
 
-/* out[i*d..] = (1/k) sum_{j=s+i-k+1..s+i} V^{index(j)}, i = 0..count-1 */
-static void moving_average(const double *V, size_t n, size_t d, int k, long s, size_t count,
-                           int cyclic, double *sum, double *out) {
+/* out[i*d..] = (1/k) sum_{j=s+i-k+1..s+i} V^{index(j)}, i = 0..count-1. Returns 0 when
+** the host interrupted (looked at with every refresh of the sum). */
+static int moving_average(const double *V, size_t n, size_t d, int k, long s, size_t count,
+                          int cyclic, const bsfit_allocator *a, double *sum, double *out) {
   size_t i, c, every = (size_t)k > REFRESH ? (size_t)k : REFRESH, left = 0, iin = 0, iout = 0;
   double inv = 1.0 / (double)k;
   for (i = 0; i < count; i++) {
     long top = s + (long)i;
     if (left-- == 0) { /* a countdown, not i % every: a division per point costs */
       long j;
+      if (bsfit__interrupted(a)) return 0;
       left = every - 1;
       memset(sum, 0, d * sizeof(double));
       for (j = top - k + 1; j <= top; j++) {
@@ -108,6 +110,7 @@ static void moving_average(const double *V, size_t n, size_t d, int k, long s, s
     }
     for (c = 0; c < d; c++) out[i * d + c] = sum[c] * inv;
   }
+  return 1;
 }
 
 bsfit_err bsfit__filter_ma_open(const bsfit__fview *in, int k, const bsfit_allocator *a,
@@ -126,7 +129,11 @@ bsfit_err bsfit__filter_ma_open(const bsfit__fview *in, int k, const bsfit_alloc
   }
   for (j = 0; j < M + p + 2; j++)
     out->U[j] = in->U[0] + ((double)((long)j + s) - 0.5 * k) * h;
-  moving_average(in->P, in->n, in->d, k, s, M, 0, sum, out->P);
+  if (!moving_average(in->P, in->n, in->d, k, s, M, 0, a, sum, out->P)) {
+    bsfit__free(a, sum, in->d * sizeof(double));
+    bsfit__fspline_free(a, out);
+    return bsfit__fail(st, BSFIT_EINTR, "filter interrupted");
+  }
   bsfit__free(a, sum, in->d * sizeof(double));
   return bsfit__ok(st);
 }
@@ -147,7 +154,11 @@ bsfit_err bsfit__filter_ma_periodic(const bsfit__fview *in, int k, const bsfit_a
   }
   for (j = 0; j < N + 2 * q + 1; j++)
     out->U[j] = in->U[0] + ((double)((long)j + s) - 0.5 * k) * h;
-  moving_average(in->P, N, d, k, s, N, 1, sum, out->P);
+  if (!moving_average(in->P, N, d, k, s, N, 1, a, sum, out->P)) {
+    bsfit__free(a, sum, d * sizeof(double));
+    bsfit__fspline_free(a, out);
+    return bsfit__fail(st, BSFIT_EINTR, "filter interrupted");
+  }
   /* the wrapped points must repeat the first ones bit for bit (SPEC 1.3) */
   memcpy(out->P + N * d, out->P, q * d * sizeof(double));
   bsfit__free(a, sum, d * sizeof(double));
@@ -190,11 +201,10 @@ static bsfit__fview curve_view(const bsfit_curve *c) {
   return v;
 }
 
-/* Hands f's arrays (allocated with *a) to a curve and moves it into out. With
-** `check`, the curve is validated first and out (possibly the input curve) survives
-** an invalid result; the moving average builds valid curves by construction and
-** skips this O(n) pass. */
-static bsfit_err give_curve(bsfit__fspline *f, int dim, int periodic, int check,
+/* Hands f's arrays (allocated with *a) to a curve and moves it into out. The curve is
+** validated first (O(n), like the filters: OK must mean a valid curve) and out (possibly
+** the input curve) survives an invalid result. */
+static bsfit_err give_curve(bsfit__fspline *f, int dim, int periodic,
                             const bsfit_allocator *a, bsfit_curve *out, bsfit_status *st) {
   bsfit_curve res;
   bsfit_err e;
@@ -207,7 +217,7 @@ static bsfit_err give_curve(bsfit__fspline *f, int dim, int periodic, int check,
   res.periodic = periodic;
   res.alloc = *a;
   memset(f, 0, sizeof *f);
-  e = check ? bsfit_curve_validate(&res, st) : BSFIT_OK;
+  e = bsfit_curve_validate(&res, st);
   if (e != BSFIT_OK) {
     bsfit_curve_free(&res);
     return e;
@@ -233,6 +243,11 @@ bsfit_err bsfit_filter_box_curve(const bsfit_curve *c, int k, bsfit_curve *out,
     return bsfit__fail(st, BSFIT_EINVAL,
                        "window width k = %d is wider than the curve's %zu knot spans", k,
                        domain_spans(c));
+  if (c->periodic && domain_spans(c) < (size_t)c->degree + 2)
+    return bsfit__fail(st, BSFIT_ENOTPERIODIC,
+                       "filtering raises the degree to %d, and a closed curve of that degree "
+                       "needs %d distinct control points; this one has %zu",
+                       c->degree + 1, c->degree + 2, domain_spans(c));
   if (!bsfit_curve_is_uniform(c))
     return bsfit__fail(st, BSFIT_EINVAL,
                        "knot spans are not all equal (clamped or non-uniform): use "
@@ -242,7 +257,7 @@ bsfit_err bsfit_filter_box_curve(const bsfit_curve *c, int k, bsfit_curve *out,
   e = c->periodic ? bsfit__filter_ma_periodic(&v, k, &a, &f, st)
                   : bsfit__filter_ma_open(&v, k, &a, &f, st);
   if (e != BSFIT_OK) return e;
-  return give_curve(&f, c->dim, c->periodic, 0, &a, out, st);
+  return give_curve(&f, c->dim, c->periodic, &a, out, st);
 }
 
 static bsfit_err check_delta(double delta, double length, const char *what, bsfit_status *st) {
@@ -271,7 +286,7 @@ bsfit_err bsfit_filter_box_curve_delta(const bsfit_curve *c, double delta, bsfit
   e = c->periodic ? bsfit__filter_exact_periodic(&v, delta, &a, &f, st)
                   : bsfit__filter_exact_open(&v, delta, &a, &f, st);
   if (e != BSFIT_OK) return e;
-  return give_curve(&f, c->dim, c->periodic, 1, &a, out, st);
+  return give_curve(&f, c->dim, c->periodic, &a, out, st);
 }
 
 /* }==================================================================== */

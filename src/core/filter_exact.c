@@ -11,6 +11,7 @@
 */
 #include "filter_internal.h"
 #include "curve_ops_internal.h"
+#include "../bsfit_filter.h"
 
 #include <float.h>
 #include <math.h>
@@ -104,15 +105,31 @@ static void antiderivative_knots(const bsfit__fview *in, const clamped_ext *x, d
   for (j = 0; j < p + 2; j++) Wp[at++] = x->R;
 }
 
-/* J^0 = 0, J^i = J^{i-1} + Q^{i-1} (W_{i+p} - W_{i-1}) / (p+1), W = W' without its ends */
+/* ctr = the middle of the control points' bounding box. The filter keeps constants, so it
+** runs on V - ctr and adds ctr back: the antiderivative then grows with the spread of the
+** points, not with their distance from the origin, and so does its rounding. */
+static void centre(const bsfit__fview *in, double *ctr) {
+  size_t i, c, d = in->d;
+  for (c = 0; c < d; c++) {
+    double lo = in->P[c], hi = in->P[c];
+    for (i = 1; i < in->n; i++) {
+      lo = fmin(lo, in->P[i * d + c]);
+      hi = fmax(hi, in->P[i * d + c]);
+    }
+    ctr[c] = 0.5 * lo + 0.5 * hi;
+  }
+}
+
+/* J^0 = 0, J^i = J^{i-1} + Q^{i-1} (W_{i+p} - W_{i-1}) / (p+1), W = W' without its ends;
+** Q centred on ctr */
 static void antiderivative_points(const bsfit__fview *in, const clamped_ext *x, const double *Wp,
-                                  double *J) {
+                                  const double *ctr, double *J) {
   size_t p = (size_t)in->p, d = in->d, i, c;
   memset(J, 0, d * sizeof(double));
   for (i = 1; i <= x->m; i++) {
     const double *Q = in->P + q_index(x, in->n, i - 1) * d;
     double w = (Wp[i + p + 1] - Wp[i]) / (double)(p + 1);
-    for (c = 0; c < d; c++) J[i * d + c] = J[(i - 1) * d + c] + w * Q[c];
+    for (c = 0; c < d; c++) J[i * d + c] = J[(i - 1) * d + c] + w * (Q[c] - ctr[c]);
   }
 }
 
@@ -120,47 +137,86 @@ static void antiderivative_points(const bsfit__fview *in, const clamped_ext *x, 
 ** knot multiplicity q at R - delta) with the linear piece I(R) + V^{n-1} (t + delta - R)
 ** written as a Bezier segment of degree q on [R - delta, R + delta]. */
 static void shifted_plus(const bsfit__fview *in, const clamped_ext *x, const double *Wp,
-                         const double *J, double delta, double *K, double *A) {
+                         const double *J, const double *ctr, double delta, double *K, double *A) {
   size_t q = (size_t)in->p + 1, d = in->d, m = x->m, j, c;
   const double *last = in->P + (in->n - 1) * d, *Jm = J + m * d;
   for (j = 0; j <= m + q; j++) K[j] = Wp[j] - delta;
   for (j = 0; j <= q; j++) K[m + q + 1 + j] = x->R + delta;
   memcpy(A, J, (m + 1) * d * sizeof(double));
   for (j = 1; j <= q; j++)
-    for (c = 0; c < d; c++) A[(m + j) * d + c] = Jm[c] + last[c] * (2.0 * delta * (double)j / (double)q);
+    for (c = 0; c < d; c++)
+      A[(m + j) * d + c] = Jm[c] + (last[c] - ctr[c]) * (2.0 * delta * (double)j / (double)q);
 }
 
 /* A-(t) = I(t - delta): the linear piece V^0 (t - delta - L) on [L - delta, L + delta],
 ** then I on knots W' + delta. */
 static void shifted_minus(const bsfit__fview *in, const clamped_ext *x, const double *Wp,
-                          const double *J, double delta, double *K, double *A) {
+                          const double *J, const double *ctr, double delta, double *K,
+                          double *A) {
   size_t q = (size_t)in->p + 1, d = in->d, m = x->m, j, c;
   const double *first = in->P;
   for (j = 0; j <= q; j++) K[j] = x->L - delta;
   for (j = 1; j <= m + q + 1; j++) K[q + j] = Wp[j] + delta;
   for (j = 0; j < q; j++)
     for (c = 0; c < d; c++)
-      A[j * d + c] = -first[c] * (2.0 * delta * (double)(q - j) / (double)q);
+      A[j * d + c] = -(first[c] - ctr[c]) * (2.0 * delta * (double)(q - j) / (double)q);
   memcpy(A + q * d, J, (m + 1) * d * sizeof(double));
 }
 
-/* Union of the two knot vectors (nk each) with multiplicities: knots of the two that
-** are within tol are one knot (Km's copy takes Kp's value). Xp and Xm receive the
-** knots of T missing from Kp and from Km. Returns the length of T. */
-static size_t merge_knots(const double *Kp, double *Km, size_t nk, double tol, double *T,
-                          double *Xp, size_t *nxp, double *Xm, size_t *nxm) {
+/* The result is a difference of two antiderivatives divided by 2 delta: their rounding,
+** about eps (R - L) times the spread of the control points, is amplified by (R - L) /
+** delta. Below BSFIT_FILTER_MIN_DELTA (2^-24) of the domain that reaches 1e-9 of the
+** spread, and u - delta, u + delta must stay distinct knots: refuse such windows (they
+** change the curve by delta^2 |C''| / 6, less than its rounding, anyway). */
+static bsfit_err check_resolution(const clamped_ext *x, double delta, bsfit_status *st) {
+  double len = x->R - x->L, dmin;
+  dmin = BSFIT_FILTER_MIN_DELTA * len + 1048576.0 * DBL_EPSILON * fmax(fabs(x->L), fabs(x->R));
+  if (delta < dmin)
+    return bsfit__fail(st, BSFIT_EDOMAIN,
+                       "delta = %g is below the exact filter's resolution %g (2^-24 of "
+                       "the domain length %g): rounding would swamp it",
+                       delta, dmin, len);
+  return BSFIT_OK;
+}
+
+/* Smallest positive gap between consecutive knots of K (nk of them); HUGE_VAL if none. */
+static double min_gap(const double *K, size_t nk) {
+  double g = HUGE_VAL;
+  size_t i;
+  for (i = 1; i < nk; i++)
+    if (K[i] > K[i - 1] && K[i] - K[i - 1] < g) g = K[i] - K[i - 1];
+  return g;
+}
+
+/* Knots u_i + delta and u_j - delta that coincide in exact arithmetic (uniform spacing)
+** differ here by a few ulps: every knot of Km within tol of a knot of Kp takes that
+** knot's value, all its copies alike. The caller keeps tol below a quarter of every
+** positive gap in Kp and Km, so at most one knot of Kp is in reach, the map keeps Km
+** sorted, and no two distinct knots of one vector become one (no multiplicity grows). */
+static void snap_knots(const double *Kp, double *Km, size_t nk, double tol) {
+  size_t i = 0, j;
+  for (j = 0; j < nk; j++) {
+    while (i + 1 < nk && Kp[i] < Km[j] - tol) i++;
+    if (fabs(Kp[i] - Km[j]) <= tol) Km[j] = Kp[i];
+  }
+}
+
+/* T = the union of the sorted multisets Kp and Km (each value with the larger of its two
+** multiplicities); Xp and Xm receive the knots of T missing from Kp and from Km. */
+static size_t union_knots(const double *Kp, const double *Km, size_t nk, double *T, double *Xp,
+                          size_t *nxp, double *Xm, size_t *nxm) {
   size_t i = 0, j = 0, nt = 0;
   *nxp = *nxm = 0;
   while (i < nk || j < nk) {
-    if (i < nk && j < nk && fabs(Kp[i] - Km[j]) <= tol) {
-      Km[j++] = Kp[i];
-      T[nt++] = Kp[i++];
-    } else if (j >= nk || (i < nk && Kp[i] < Km[j])) {
+    if (j >= nk || (i < nk && Kp[i] < Km[j])) {
       Xm[(*nxm)++] = Kp[i];
       T[nt++] = Kp[i++];
-    } else {
+    } else if (i >= nk || Km[j] < Kp[i]) {
       Xp[(*nxp)++] = Km[j];
       T[nt++] = Km[j++];
+    } else {
+      T[nt++] = Kp[i++];
+      j++;
     }
   }
   return nt;
@@ -170,10 +226,11 @@ bsfit_err bsfit__filter_exact_open(const bsfit__fview *in, double delta,
                                    const bsfit_allocator *a, bsfit__fspline *out,
                                    bsfit_status *st) {
   size_t q = (size_t)in->p + 1, d = in->d, nk, nA, nt, nxp, nxm, i;
-  double *Wp, *J, *Kp, *Km, *Ap, *Am, *T, *Xp, *Xm, *Rm, tol, inv;
+  double *Wp, *J, *Kp, *Km, *Ap, *Am, *T, *Xp, *Xm, *Rm, *ctr, tol, inv;
   clamped_ext x;
   scratch s;
   bsfit_err e = make_clamped_ext(in, &x, st);
+  if (e == BSFIT_OK) e = check_resolution(&x, delta, st);
   if (e != BSFIT_OK) return e;
   nA = x.m + q + 1;
   nk = nA + q + 1;
@@ -188,32 +245,50 @@ bsfit_err bsfit__filter_exact_open(const bsfit__fview *in, double delta,
   T = scratch_get(&s, 2 * nk, 1);
   Xp = scratch_get(&s, nk, 1);
   Xm = scratch_get(&s, nk, 1);
-  if (!Wp || !J || !Kp || !Km || !Ap || !Am || !T || !Xp || !Xm) {
+  ctr = scratch_get(&s, d, 1);
+  if (!Wp || !J || !Kp || !Km || !Ap || !Am || !T || !Xp || !Xm || !ctr) {
     scratch_release(&s);
     return bsfit__fail(st, BSFIT_ENOMEM, "out of memory filtering %zu control points", in->n);
   }
   antiderivative_knots(in, &x, Wp);
-  antiderivative_points(in, &x, Wp, J);
-  shifted_plus(in, &x, Wp, J, delta, Kp, Ap);
-  shifted_minus(in, &x, Wp, J, delta, Km, Am);
-  /* knots u_i + delta and u_j - delta that coincide in exact arithmetic (uniform
-  ** spacing) differ here by a few ulps; merge them rather than keep slivers */
+  if (bsfit__interrupted(a)) { /* each phase below is O(n): look between them */
+    scratch_release(&s);
+    return bsfit__fail(st, BSFIT_EINTR, "filter interrupted");
+  }
+  centre(in, ctr);
+  antiderivative_points(in, &x, Wp, ctr, J);
+  shifted_plus(in, &x, Wp, J, ctr, delta, Kp, Ap);
+  shifted_minus(in, &x, Wp, J, ctr, delta, Km, Am);
+  /* rounding of the shifts is a few ulps of the knots; a tolerance that reached a gap
+  ** between distinct knots (2 delta between u - delta and u + delta, or clustered knots)
+  ** would merge knots that differ, and the refinements would then overrun */
   tol = 64.0 * DBL_EPSILON * (fabs(x.L) + fabs(x.R) + 2.0 * delta);
-  nt = merge_knots(Kp, Km, nk, tol, T, Xp, &nxp, Xm, &nxm);
+  tol = fmin(tol, 0.25 * fmin(min_gap(Kp, nk), min_gap(Km, nk)));
+  snap_knots(Kp, Km, nk, tol);
+  nt = union_knots(Kp, Km, nk, T, Xp, &nxp, Xm, &nxm);
   e = bsfit__fspline_alloc(a, out, (int)q, nt - q - 1, d, st);
   Rm = e == BSFIT_OK ? scratch_get(&s, nt - q - 1, d) : NULL;
   if (e == BSFIT_OK && Rm == NULL) {
     bsfit__fspline_free(a, out);
     e = bsfit__fail(st, BSFIT_ENOMEM, "out of memory filtering %zu control points", in->n);
   }
+  if (e == BSFIT_OK && bsfit__interrupted(a)) {
+    bsfit__fspline_free(a, out);
+    e = bsfit__fail(st, BSFIT_EINTR, "filter interrupted");
+  }
   if (e != BSFIT_OK) {
     scratch_release(&s);
     return e;
   }
-  bsfit__refine_raw((int)q, nA, d, Kp, Ap, Xp, nxp, out->U, out->P);
-  bsfit__refine_raw((int)q, nA, d, Km, Am, Xm, nxm, T, Rm); /* T is rebuilt identical */
+  if (!bsfit__refine_raw((int)q, nA, d, Kp, Ap, Xp, nxp, out->U, out->P) ||
+      !bsfit__refine_raw((int)q, nA, d, Km, Am, Xm, nxm, T, Rm)) { /* T rebuilt identical */
+    bsfit__fspline_free(a, out);
+    scratch_release(&s);
+    return bsfit__fail(st, BSFIT_EDOMAIN,
+                       "delta = %g is too small for the knots of this curve", delta);
+  }
   inv = 1.0 / (2.0 * delta);
-  for (i = 0; i < out->n * d; i++) out->P[i] = (out->P[i] - Rm[i]) * inv;
+  for (i = 0; i < out->n * d; i++) out->P[i] = (out->P[i] - Rm[i]) * inv + ctr[i % d];
   scratch_release(&s);
   return bsfit__ok(st);
 }
@@ -244,7 +319,12 @@ static bsfit_err unwrap(const bsfit__fview *in, size_t N, size_t M, scratch *s,
   long i0 = -(long)(M * N);
   double *U = scratch_get(s, n + p + 1, 1), *P = scratch_get(s, n, d);
   if (U == NULL || P == NULL) return BSFIT_ENOMEM;
-  for (i = 0; i < n + p + 1; i++) U[i] = periodic_knot(in, N, i0 - (long)p + (long)i);
+  for (i = 0; i < n + p + 1; i++) {
+    U[i] = periodic_knot(in, N, i0 - (long)p + (long)i);
+    /* t + k T rounds: a knot an ulp from the seam can land past the next period's
+    ** first one; keep the vector sorted (unwrapped_ok then checks the runs) */
+    if (i > 0 && U[i] < U[i - 1]) U[i] = U[i - 1];
+  }
   for (i = 0; i < n; i++) {
     long j = (i0 + (long)i) % (long)N;
     memcpy(P + i * d, in->P + (size_t)(j < 0 ? j + (long)N : j) * d, d * sizeof(double));
@@ -288,6 +368,17 @@ static bsfit_err read_period(const bsfit__fspline *f, double a, double T, double
   return BSFIT_OK;
 }
 
+/* Knots t + k T of the unwrapped periods round: a cluster of knots closer than that
+** rounding can collapse into a run longer than degree + 1, which no spline has. */
+static int unwrapped_ok(const bsfit__fview *open) {
+  size_t i, run = 1, nk = open->n + (size_t)open->p + 1;
+  for (i = 1; i < nk; i++) {
+    run = open->U[i] == open->U[i - 1] ? run + 1 : 1;
+    if (run > (size_t)open->p + 1) return 0;
+  }
+  return 1;
+}
+
 bsfit_err bsfit__filter_exact_periodic(const bsfit__fview *in, double delta,
                                        const bsfit_allocator *a, bsfit__fspline *out,
                                        bsfit_status *st) {
@@ -302,6 +393,13 @@ bsfit_err bsfit__filter_exact_periodic(const bsfit__fview *in, double delta,
   if (unwrap(in, N, M, &s, &open) != BSFIT_OK) {
     scratch_release(&s);
     return bsfit__fail(st, BSFIT_ENOMEM, "out of memory unwrapping a closed curve");
+  }
+  if (!unwrapped_ok(&open)) {
+    scratch_release(&s);
+    return bsfit__fail(st, BSFIT_EMULT,
+                       "knots of this closed curve are closer than the rounding of its "
+                       "periods shifted by up to %g: they would merge",
+                       (double)M * T);
   }
   e = bsfit__filter_exact_open(&open, delta, a, &f, st);
   if (e == BSFIT_OK) {

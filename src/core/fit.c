@@ -63,7 +63,7 @@ static void carve(bsfit_fitter *f, const size_t off[13]) {
 }
 
 static bsfit_err check_opts(const bsfit_fit_opts *o, bsfit_status *st) {
-  size_t need;
+  size_t need, td;
   if (o == NULL) return bsfit__fail(st, BSFIT_EINVAL, "fit options are NULL");
   if (o->degree < 1 || o->degree > BSFIT_MAX_DEGREE)
     return bsfit__fail(st, BSFIT_EDEGREE, "degree %d out of range 1..%d", o->degree,
@@ -86,6 +86,10 @@ static bsfit_err check_opts(const bsfit_fit_opts *o, bsfit_status *st) {
     return bsfit__fail(st, BSFIT_ENONFINITE, "tangent_start is not finite");
   if (o->tangent_end && !bsfit__all_finite(o->tangent_end, (size_t)o->tangent_dim))
     return bsfit__fail(st, BSFIT_ENONFINITE, "tangent_end is not finite");
+  td = (size_t)o->tangent_dim;
+  if ((o->tangent_start && bsfit__first_out_of_range(o->tangent_start, td) < td) ||
+      (o->tangent_end && bsfit__first_out_of_range(o->tangent_end, td) < td))
+    return bsfit__fail(st, BSFIT_ERANGE, "an end tangent has a coordinate beyond 1e100");
   need = (size_t)(o->tangent_start ? 2 : o->fix_ends ? 1 : 0) +
          (size_t)(o->tangent_end ? 2 : o->fix_ends ? 1 : 0);
   if (need > o->count)
@@ -333,6 +337,16 @@ static bsfit_err open_solve(bsfit_fitter *f, const double *pts, size_t m, int di
 ** The fit
 ** ======================================================================= */
 
+/* The first point with a coordinate beyond BSFIT_COORD_MAX, named; BSFIT_OK if none.
+** Only called once a fit has shown the sign of one (the scan costs a pass over the data,
+** a quarter of a Cholesky fit's time). */
+static bsfit_err range_error(const double *pts, size_t m, int dim, bsfit_status *st) {
+  size_t d = (size_t)dim, k = bsfit__first_out_of_range(pts, m * d);
+  if (k == m * d) return BSFIT_OK;
+  return bsfit__fail(st, BSFIT_ERANGE, "point %zu has a coordinate %g beyond 1e100", k / d,
+                     pts[k]);
+}
+
 static bsfit_err check_fit_args(const bsfit_fitter *f, const double *pts, size_t m, int dim,
                                 const double *u, const bsfit_curve *out, bsfit_status *st) {
   if (f == NULL || pts == NULL || u == NULL || out == NULL)
@@ -425,9 +439,17 @@ static bsfit_err assemble_checked(bsfit_fitter *f, const double *pts, size_t m, 
   return BSFIT_OK;
 }
 
-static bsfit_err solution_finite(const bsfit_fitter *f, int dim, const bsfit_curve *out,
-                                 bsfit_status *st) {
-  if (bsfit__all_finite(out->ctrl, f->nraw * (size_t)dim)) return BSFIT_OK;
+/* The control points must be finite and, so that the curve is valid, within
+** BSFIT_COORD_MAX: beyond it the data were (points beyond 1e100 are named). */
+static bsfit_err solution_finite(const bsfit_fitter *f, const double *pts, size_t m, int dim,
+                                 const bsfit_curve *out, bsfit_status *st) {
+  size_t nc = f->nraw * (size_t)dim, k = bsfit__first_out_of_range(out->ctrl, nc);
+  if (k < nc && bsfit__all_finite(out->ctrl, nc)) {
+    if (range_error(pts, m, dim, st) != BSFIT_OK) return BSFIT_ERANGE;
+    return bsfit__fail(st, BSFIT_ERANGE, "control point %zu of the fit is %g, beyond 1e100",
+                       k / (size_t)dim, out->ctrl[k]);
+  }
+  if (k == nc) return BSFIT_OK;
   return bsfit__fail(st, BSFIT_ESINGULAR, "the solution is not finite: the normal matrix is "
                      "numerically singular");
 }
@@ -449,7 +471,7 @@ static bsfit_err fit_cholesky(bsfit_fitter *f, const double *pts, size_t m, int 
                   : open_solve(f, pts, m, dim, out->ctrl, rc, st);
   if (e != BSFIT_OK) return empty_span_error(f, e, st, NULL, NULL);
   wrap_ctrl(f, dim, out);
-  return solution_finite(f, dim, out, st);
+  return solution_finite(f, pts, m, dim, out, st);
 }
 
 /* QR of the weighted rows (fit_qr.c): no normal matrix. */
@@ -458,6 +480,10 @@ static bsfit_err fit_qr(bsfit_fitter *f, const double *pts, size_t m, int dim, c
   bsfit__fixed_set fx;
   int badw;
   bsfit_err e;
+  /* every point and parameter, as the Cholesky path's sums check them: rows that reach
+  ** no free unknown (fixed ends, no free control point) leave no trace in R */
+  if (!bsfit__all_finite(pts, m * (size_t)dim) || !bsfit__all_finite(u, m))
+    return input_error(pts, m, dim, u, w, st);
   bsfit__fit_fixed(f, pts, m, dim, &fx); /* periodic fits have no constraints: lo..hi all */
   e = bsfit__qr_factor(f, pts, m, dim, u, w, &fx, &badw, st);
   if (e != BSFIT_OK) return e;
@@ -468,7 +494,7 @@ static bsfit_err fit_qr(bsfit_fitter *f, const double *pts, size_t m, int dim, c
   if (e == BSFIT_OK) e = bsfit__qr_solve(f, dim, &fx, out->ctrl, rc, st);
   if (e != BSFIT_OK) return empty_span_error(f, e, st, NULL, NULL);
   wrap_ctrl(f, dim, out);
-  return solution_finite(f, dim, out, st);
+  return solution_finite(f, pts, m, dim, out, st);
 }
 
 /* BSFIT_SOLVER_AUTO: does the Cholesky result call for QR? */
@@ -499,6 +525,11 @@ static bsfit_err fit_body(bsfit_fitter *f, const double *pts, size_t m, int dim,
   if (rep == NULL && res == NULL) return bsfit__ok(st); /* nobody reads the residuals */
   if (bsfit__fit_residuals(f, out->ctrl, pts, m, dim, u, w, res, &rms, &max, &imax) != 0)
     return bsfit__fail(st, BSFIT_EINTR, "fit of %zu points interrupted", m);
+  if (!isfinite(rms) || !isfinite(max)) { /* squares of coordinates beyond ~1e154 */
+    if (range_error(pts, m, dim, st) == BSFIT_OK)
+      (void)bsfit__fail(st, BSFIT_ERANGE, "the residuals overflow");
+    return BSFIT_ERANGE;
+  }
   if (rep) {
     rep->rms = rms;
     rep->max = max;

@@ -33,11 +33,37 @@ static bsfit_err check_seq(const double *pts, size_t m, int dim, const void *out
   if (out == NULL) return bsfit__fail(st, BSFIT_EINVAL, "%s is NULL", what);
   n = bsfit__mulsize(m, (size_t)dim);
   if (n == 0) return bsfit__fail(st, BSFIT_EINVAL, "m = %zu points overflow the size", m);
-  for (i = 0; i < n; i++)
-    if (!isfinite(pts[i]))
-      return bsfit__fail(st, BSFIT_ENONFINITE, "point %zu has a non-finite coordinate",
-                         i / (size_t)dim);
+  i = bsfit__first_out_of_range(pts, n);
+  if (i < n && !isfinite(pts[i]))
+    return bsfit__fail(st, BSFIT_ENONFINITE, "point %zu has a non-finite coordinate",
+                       i / (size_t)dim);
+  if (i < n)
+    return bsfit__fail(st, BSFIT_ERANGE, "point %zu has a coordinate %g beyond 1e100",
+                       i / (size_t)dim, pts[i]);
   return BSFIT_OK;
+}
+
+/* The triple (a, b, c) as u = b - a, v = c - b, scaled by a power of two 2^-*ex (exact)
+** that brings the largest difference near 1: every kernel here is a ratio or an angle,
+** and unscaled, squares of differences below 1e-154 underflowed (a triangle of side
+** 1e-170 had radius 0, weights 0/0) or above 1e154 overflowed. */
+static void scaled_edges(const double *a, const double *b, const double *c, int dim, double u[3],
+                         double v[3], int *ex) {
+  double big = 0.0;
+  int i;
+  u[0] = u[1] = u[2] = v[0] = v[1] = v[2] = 0.0;
+  for (i = 0; i < dim; i++) {
+    u[i] = b[i] - a[i];
+    v[i] = c[i] - b[i];
+    big = fmax(big, fmax(fabs(u[i]), fabs(v[i])));
+  }
+  *ex = 0;
+  if (big == 0.0) return;
+  (void)frexp(big, ex);
+  for (i = 0; i < dim; i++) {
+    u[i] = ldexp(u[i], -*ex);
+    v[i] = ldexp(v[i], -*ex);
+  }
 }
 
 static const double *point_at(const double *pts, int dim, size_t k) {
@@ -51,16 +77,10 @@ static double dist2(const double *a, const double *b, int dim) {
   return s;
 }
 
-/* Cross product of u = b - a and v = c - b into x (2D: only x[2] is non-zero).
-** Its norm is twice the area of the triangle (a, b, c), and its direction is the
-** turn direction at b, which is why the inflection count uses the same product. */
-static void turn_cross(const double *a, const double *b, const double *c, int dim, double x[3]) {
-  double u[3] = {0.0, 0.0, 0.0}, v[3] = {0.0, 0.0, 0.0};
-  int i;
-  for (i = 0; i < dim; i++) {
-    u[i] = b[i] - a[i];
-    v[i] = c[i] - b[i];
-  }
+/* x = u x v (2D: only x[2] is non-zero). With u = b - a and v = c - b its norm is twice
+** the area of the triangle (a, b, c), and its direction is the turn direction at b,
+** which is why the inflection count uses the same product. */
+static void cross3(const double u[3], const double v[3], double x[3]) {
   x[0] = u[1] * v[2] - u[2] * v[1];
   x[1] = u[2] * v[0] - u[0] * v[2];
   x[2] = u[0] * v[1] - u[1] * v[0];
@@ -104,12 +124,18 @@ static void neighbours(size_t b, size_t m, size_t *a, size_t *c) {
 /* Radius of the circle through a, b, c: R = |ab| |bc| |ca| / (4 area);
 ** +INFINITY when the triple is collinear. */
 static double circumradius3(const double *a, const double *b, const double *c, int dim) {
-  double x[3], area2, sab = dist2(a, b, dim), sbc = dist2(b, c, dim), sca = dist2(c, a, dim);
-  turn_cross(a, b, c, dim, x);
+  double u[3], v[3], w[3], x[3], area2, sab, sbc, sca;
+  int ex, i;
+  scaled_edges(a, b, c, dim, u, v, &ex);
+  for (i = 0; i < 3; i++) w[i] = u[i] + v[i]; /* c - a, scaled */
+  sab = u[0] * u[0] + u[1] * u[1] + u[2] * u[2];
+  sbc = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+  sca = w[0] * w[0] + w[1] * w[1] + w[2] * w[2];
+  cross3(u, v, x);
   area2 = norm3(x);
   if (is_collinear(area2, sab, sbc, sca)) return INFINITY;
-  /* three roots rather than one of the product, which overflows for |side| > 1e51 */
-  return sqrt(sab) * sqrt(sbc) * sqrt(sca) / (2.0 * area2);
+  /* three roots rather than one of the product; back to the data's scale at the end */
+  return ldexp(sqrt(sab) * sqrt(sbc) * sqrt(sca) / (2.0 * area2), ex);
 }
 
 bsfit_err bsfit_geom_circumradius(const double *pts, size_t m, int dim, int closed,
@@ -141,9 +167,10 @@ static size_t finite_stats(const double *r, size_t m, double *rmax, double *rmin
     }
   if (n == 0) return 0;
   mean = sum / (double)n;
-  for (k = 0; k < m; k++)
-    if (isfinite(r[k])) var += (r[k] - mean) * (r[k] - mean);
-  *rmax = mean + sqrt(var / (double)n);
+  /* deviations relative to the mean: squares of radii below 1e-154 would underflow */
+  for (k = 0; k < m && mean > 0; k++)
+    if (isfinite(r[k])) var += ((r[k] - mean) / mean) * ((r[k] - mean) / mean);
+  *rmax = mean + mean * sqrt(var / (double)n);
   return n;
 }
 
@@ -175,17 +202,15 @@ bsfit_err bsfit_weights_circumradius(const double *pts, size_t m, int dim, int c
 ** coincides with b. atan2 of the cross and dot products stays accurate near 0 and
 ** 180 degrees, where acos of the normalised dot product loses half the digits. */
 static double angle_at(const double *a, const double *b, const double *c, int dim) {
-  double u[3] = {0.0, 0.0, 0.0}, v[3] = {0.0, 0.0, 0.0}, x[3], dot = 0.0;
-  int i;
-  for (i = 0; i < dim; i++) {
-    u[i] = a[i] - b[i];
-    v[i] = c[i] - b[i];
+  double u[3], v[3], x[3], dot = 0.0;
+  int i, ex;
+  scaled_edges(a, b, c, dim, u, v, &ex); /* u = b - a: turned into a - b below */
+  for (i = 0; i < 3; i++) {
+    u[i] = -u[i];
     dot += u[i] * v[i];
   }
-  if (dist2(a, b, dim) == 0.0 || dist2(b, c, dim) == 0.0) return 180.0;
-  x[0] = u[1] * v[2] - u[2] * v[1];
-  x[1] = u[2] * v[0] - u[0] * v[2];
-  x[2] = u[0] * v[1] - u[1] * v[0];
+  if (norm3(u) == 0.0 || norm3(v) == 0.0) return 180.0;
+  cross3(u, v, x);
   return atan2(norm3(x), dot) * RAD_TO_DEG;
 }
 
@@ -211,11 +236,15 @@ static int vertex_turn(const double *pts, size_t m, int dim, size_t b, double x[
   size_t a, c;
   const double *A, *B, *C;
   neighbours(b, m, &a, &c);
+  double u[3], v[3], w[3];
+  int ex, i;
   A = point_at(pts, dim, a);
   B = point_at(pts, dim, b);
   C = point_at(pts, dim, c);
-  turn_cross(A, B, C, dim, x);
-  return !is_collinear(norm3(x), dist2(A, B, dim), dist2(B, C, dim), dist2(C, A, dim));
+  scaled_edges(A, B, C, dim, u, v, &ex); /* the direction of the turn is all we need */
+  for (i = 0; i < 3; i++) w[i] = u[i] + v[i];
+  cross3(u, v, x);
+  return !is_collinear(norm3(x), dot3(u, u), dot3(v, v), dot3(w, w));
 }
 
 bsfit_err bsfit_geom_inflections(const double *pts, size_t m, int dim, int closed,
@@ -254,8 +283,15 @@ bsfit_err bsfit_weights_turning(const double *pts, size_t m, int dim, int closed
   return bsfit__ok(st);
 }
 
+/* |P_j - P_i|, scaled like hypot so that neither squares underflow nor overflow */
 static double chord(const double *pts, int dim, size_t i, size_t j) {
-  return sqrt(dist2(point_at(pts, dim, i), point_at(pts, dim, j), dim));
+  const double *a = point_at(pts, dim, i), *b = point_at(pts, dim, j);
+  double big = 0.0, s = 0.0;
+  int k;
+  for (k = 0; k < dim; k++) big = fmax(big, fabs(b[k] - a[k]));
+  if (big == 0.0) return 0.0;
+  for (k = 0; k < dim; k++) s += ((b[k] - a[k]) / big) * ((b[k] - a[k]) / big);
+  return big * sqrt(s);
 }
 
 bsfit_err bsfit_weights_spacing(const double *pts, size_t m, int dim, int closed, double *w,

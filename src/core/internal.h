@@ -39,8 +39,16 @@ size_t bsfit__mulsize(size_t n, size_t size);
 /* Non-zero when every one of the n doubles is finite. */
 int bsfit__all_finite(const double *x, size_t n);
 
+/* Index of the first of the n doubles with |x| > BSFIT_COORD_MAX or NaN, or n if none. */
+size_t bsfit__first_out_of_range(const double *x, size_t n);
+
 /* curve.c: u wrapped into one period (periodic curves only; others unchanged) */
 double bsfit__curve_wrap(const bsfit_curve *c, double u);
+/* curve.c: non-zero when an open curve may be evaluated at u: within one domain length
+** of the domain (extrapolation by the end polynomials loses its digits, then overflows,
+** farther out: the basis divides sums like (U - u) + (u - U')); periodic curves: any
+** finite u. */
+int bsfit__curve_reach(const bsfit_curve *c, double u);
 /* curve.c: C(u) for a valid curve and finite u, no checks */
 void bsfit__curve_eval_unchecked(const bsfit_curve *c, double u, double *out);
 

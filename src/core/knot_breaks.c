@@ -142,16 +142,16 @@ static size_t write_period(const knot *knots, size_t nk, int p, double t0, doubl
 
 bsfit_err bsfit_knots_place_breaks(const double *u, size_t m, int p, size_t n_target,
                                    const double *breaks, size_t nb, double *period, size_t *n_out,
-                                   bsfit_status *st) {
+                                   const bsfit_allocator *a, bsfit_status *st) {
   size_t *share = NULL, nbk, nk, s0, N;
   double *kept = NULL, *len = NULL, t0;
   knot *knots = NULL;
   bsfit_err e = check_inputs(u, m, p, breaks, nb, st);
   if (e != BSFIT_OK) return e;
-  kept = bsfit__alloc(NULL, (nb + 1) * sizeof(double));
-  len = bsfit__alloc(NULL, (nb + 1) * sizeof(double));
-  share = bsfit__alloc(NULL, (nb + 1) * sizeof(size_t));
-  knots = bsfit__alloc(NULL, (n_target + 1) * sizeof(knot));
+  kept = bsfit__alloc(a, (nb + 1) * sizeof(double));
+  len = bsfit__alloc(a, (nb + 1) * sizeof(double));
+  share = bsfit__alloc(a, (nb + 1) * sizeof(size_t));
+  knots = bsfit__alloc(a, (n_target + 1) * sizeof(knot));
   if (!kept || !len || !share || !knots) {
     e = bsfit__fail(st, BSFIT_ENOMEM, "out of memory for %zu knots", n_target);
     goto done;
@@ -183,9 +183,9 @@ bsfit_err bsfit_knots_place_breaks(const double *u, size_t m, int p, size_t n_ta
   *n_out = N;
   e = bsfit__ok(st);
 done:
-  bsfit__free(NULL, kept, (nb + 1) * sizeof(double));
-  bsfit__free(NULL, len, (nb + 1) * sizeof(double));
-  bsfit__free(NULL, share, (nb + 1) * sizeof(size_t));
-  bsfit__free(NULL, knots, (n_target + 1) * sizeof(knot));
+  bsfit__free(a, kept, (nb + 1) * sizeof(double));
+  bsfit__free(a, len, (nb + 1) * sizeof(double));
+  bsfit__free(a, share, (nb + 1) * sizeof(size_t));
+  bsfit__free(a, knots, (n_target + 1) * sizeof(knot));
   return e;
 }

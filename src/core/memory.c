@@ -31,6 +31,13 @@ size_t bsfit__mulsize(size_t n, size_t size) {
   return n * size;
 }
 
+size_t bsfit__first_out_of_range(const double *x, size_t n) {
+  size_t i;
+  for (i = 0; i < n; i++)
+    if (!(fabs(x[i]) <= BSFIT_COORD_MAX)) return i;
+  return n;
+}
+
 /* x * 0 is +-0 for a finite x and NaN for Inf or NaN, and a NaN survives the sums: no
 ** branch per element, and four running sums keep the adds independent. */
 int bsfit__all_finite(const double *x, size_t n) {

@@ -180,7 +180,7 @@ static void build_node(const build_ctx *B, size_t node, int level, size_t lo, si
 }
 
 bsfit_err bsfit__nearest_init(bsfit__nearest *nn, const double *smp, size_t K, size_t d,
-                              size_t queries, bsfit_status *st) {
+                              size_t queries, const bsfit_allocator *a, bsfit_status *st) {
   size_t nnode, i, nb, nd, ni;
   double cell[2 * 4];
   build_ctx B;
@@ -192,6 +192,10 @@ bsfit_err bsfit__nearest_init(bsfit__nearest *nn, const double *smp, size_t K, s
   nn->nnode = 0;
   nn->block = NULL;
   nn->bytes = 0;
+  nn->alloc.fn = NULL;
+  nn->alloc.ud = NULL;
+  nn->alloc.interrupt = NULL;
+  if (a != NULL) nn->alloc = *a;
   /* a non-finite sample (an overflowing NURBS) would poison the boxes: the scan copes */
   if (K < NEAREST_MIN_K || queries < NEAREST_MIN_QUERIES || !bsfit__all_finite(smp, K * d))
     return bsfit__ok(st);
@@ -207,7 +211,7 @@ bsfit_err bsfit__nearest_init(bsfit__nearest *nn, const double *smp, size_t K, s
       (nd + nb) * sizeof(double) > SIZE_MAX - ni)
     return bsfit__fail(st, BSFIT_ENOMEM, "search tree of %zu samples too large", K);
   nn->bytes = (nd + nb) * sizeof(double) + ni;
-  nn->block = bsfit__alloc(NULL, nn->bytes);
+  nn->block = bsfit__alloc(&nn->alloc, nn->bytes);
   if (nn->block == NULL) {
     nn->bytes = 0;
     return bsfit__fail(st, BSFIT_ENOMEM, "out of memory for the search tree of %zu samples", K);
@@ -231,7 +235,7 @@ bsfit_err bsfit__nearest_init(bsfit__nearest *nn, const double *smp, size_t K, s
 
 void bsfit__nearest_free(bsfit__nearest *nn) {
   if (nn == NULL) return;
-  bsfit__free(NULL, nn->block, nn->bytes);
+  bsfit__free(&nn->alloc, nn->block, nn->bytes);
   nn->block = NULL;
   nn->bytes = 0;
   nn->depth = -1;

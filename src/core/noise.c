@@ -59,23 +59,33 @@ static const double misfit_ok[NKINDS] = {2.4, 3.8, 3.8, 2.4, 2.4, 3.0, 3.0};
 ** (summed over the normal components) over its variance factor (1 + leverage of the
 ** prediction), so that it is sigma^2 (times the number of normal components) on
 ** average; and the fit's residual sum of squares per degree of freedom (the window's
-** own misfit: noise, plus bias where the polynomial cannot follow the shape). 0 when
-** the window is degenerate or does not fit in open data. */
+** own misfit: noise, plus bias where the polynomial cannot follow the shape). Both are
+** returned as their square roots, z and mf, in the data's units: the window is worked
+** in differences scaled by a power of two 2^ex near its extent (exact), so that no
+** square underflows for data of 1e-170 nor overflows. 0 when the window is degenerate
+** or does not fit in open data. */
 static int predict(const double *pts, size_t m, int dim, int closed, size_t k,
-                   const window_kind *w, double *z2, double *misfit) {
+                   const window_kind *w, double *z, double *mf) {
   int ncoef = w->degree + 1, ny = dim == 2 ? 1 : 3, a, b, d, j, n = w->hi - w->lo;
   const double *Q = pts + k * (size_t)dim, *F, *L;
   double t[3] = {0, 0, 0}, nv[3] = {0, 0, 0}, tn = 0, scale = 0, A[NCOEF_MAX][NCOEF_MAX];
   double rhs[3][NCOEF_MAX], x0[NCOEF_MAX] = {1, 0, 0, 0, 0}, syy = 0, rss, lev, pred2 = 0;
-  double s[17], y[17][3];
+  double s[17], y[17][3], big = 0.0;
   size_t first, idx;
+  int ex;
   if (!closed && ((long)k + w->lo < 0 || (long)k + w->hi >= (long)m)) return 0;
   if ((size_t)(n + 1) > m || n + 1 > 17) return 0;
   first = (size_t)(((long)k + w->lo) % (long)m + (long)m) % m;
   F = pts + first * (size_t)dim;
   L = pts + ((first + (size_t)n) % m) * (size_t)dim;
+  for (j = 0, idx = first; j <= n; j++) {
+    for (d = 0; d < dim; d++) big = fmax(big, fabs(pts[idx * (size_t)dim + (size_t)d] - Q[d]));
+    if (++idx == m) idx = 0;
+  }
+  if (!(big > 0)) return 0;
+  (void)frexp(big, &ex);
   for (d = 0; d < dim; d++) {
-    t[d] = L[d] - F[d];
+    t[d] = ldexp(L[d] - F[d], -ex);
     tn += t[d] * t[d];
   }
   if (!(tn > 0)) return 0;
@@ -85,13 +95,14 @@ static int predict(const double *pts, size_t m, int dim, int closed, size_t k,
   /* the window in the frame of its chord, origin at Q_k: s along, y across */
   for (j = 0, idx = first; j <= n; j++) {
     const double *P = pts + idx * (size_t)dim;
-    double sj = 0;
-    for (d = 0; d < dim; d++) sj += (P[d] - Q[d]) * t[d];
+    double sj = 0, D[3] = {0, 0, 0};
+    for (d = 0; d < dim; d++) D[d] = ldexp(P[d] - Q[d], -ex);
+    for (d = 0; d < dim; d++) sj += D[d] * t[d];
     s[j] = sj;
     if (fabs(sj) > scale) scale = fabs(sj);
-    if (dim == 2) y[j][0] = (P[0] - Q[0]) * nv[0] + (P[1] - Q[1]) * nv[1];
+    if (dim == 2) y[j][0] = D[0] * nv[0] + D[1] * nv[1];
     else
-      for (d = 0; d < 3; d++) y[j][d] = P[d] - Q[d] - sj * t[d];
+      for (d = 0; d < 3; d++) y[j][d] = D[d] - sj * t[d];
     if (++idx == m) idx = 0;
   }
   if (!(scale > 0)) return 0;
@@ -121,8 +132,8 @@ static int predict(const double *pts, size_t m, int dim, int closed, size_t k,
     for (a = 0; a < ncoef; a++) rss -= c[a] * rhs[d][a];
     pred2 += c[0] * c[0]; /* the fit at s = 0 minus the point itself (at the origin) */
   }
-  *z2 = pred2 / (1.0 + lev);
-  *misfit = fmax(rss, 0.0) / (double)((n - ncoef) * (dim - 1));
+  *z = ldexp(sqrt(pred2 / (1.0 + lev)), ex);
+  *mf = ldexp(sqrt(fmax(rss, 0.0) / (double)((n - ncoef) * (dim - 1))), ex);
   return 1;
 }
 
@@ -140,32 +151,32 @@ static double robust_scale(double *r, size_t n, int dim) {
        (dim == 2 ? 0.5244005127080407 : 1.0107676525947897);
   if (!(s0 > 0)) return 0.0;
   cut = (dim == 2 ? 2.5 : 3.0) * s0;
-  for (k = 0; k < n; k++)
-    if (r[k] <= cut) sum += r[k] * r[k], nt++;
-  return nt > 0 ? sqrt(sum / (double)nt / (dim == 2 ? 0.9112593 : 1.8989008)) : s0;
+  for (k = 0; k < n; k++) /* squares relative to s0: no underflow for tiny data */
+    if (r[k] <= cut) sum += (r[k] / s0) * (r[k] / s0), nt++;
+  return nt > 0 ? s0 * sqrt(sum / (double)nt / (dim == 2 ? 0.9112593 : 1.8989008)) : s0;
 }
 
 bsfit_err bsfit_noise_sigma(const double *pts, size_t m, int dim, int closed, double *sigma,
-                            bsfit_status *st) {
+                            const bsfit_allocator *a, bsfit_status *st) {
   size_t k, i, n, stride = m >= 600 ? 3 : 1;
-  double *r, pilot = INFINITY, s2, z2, f;
+  double *r, pilot = INFINITY, z, f;
   size_t bytes = 2 * m * sizeof(double);
   if (dim != 2 && dim != 3) return bsfit__fail(st, BSFIT_EDIM, "noise estimate needs 2D or 3D points, got dim %d", dim);
   if (pts == NULL || m < 6) return bsfit__fail(st, BSFIT_ETOOFEW, "noise estimate needs at least 6 points, got %zu", m);
   if (!bsfit__all_finite(pts, m * (size_t)dim))
     return bsfit__fail(st, BSFIT_ENONFINITE, "points contain NaN or Inf");
-  r = bsfit__alloc(NULL, bytes);
+  r = bsfit__alloc(a, bytes);
   if (r == NULL) return bsfit__fail(st, BSFIT_ENOMEM, "out of memory for %zu residuals", m);
   /* A pilot scale from the centred windows alone (on every third point of a long
   ** section: a pilot needs no more): the smallest of theirs (the long one's is biased
   ** up where a sparse contour bends fast). */
   for (i = 0; i < NCENTRED; i++) {
     for (n = 0, k = 0; k < m; k += stride)
-      if (predict(pts, m, dim, closed, k, &kinds[i], &z2, &f)) r[n++] = sqrt(z2);
+      if (predict(pts, m, dim, closed, k, &kinds[i], &z, &f)) r[n++] = z;
     if (n > 0) pilot = fmin(pilot, robust_scale(r, n, dim));
   }
   if (!(pilot < INFINITY)) {
-    bsfit__free(NULL, r, bytes);
+    bsfit__free(a, r, bytes);
     return bsfit__fail(st, BSFIT_EDEGENERATE, "no window of distinct points to estimate the noise");
   }
   /* Each point's error from the first centred window (in order of preference) whose
@@ -176,22 +187,26 @@ bsfit_err bsfit_noise_sigma(const double *pts, size_t m, int dim, int closed, do
   ** stands on, which its fit cannot tell; the smallest of their errors is taken (a
   ** bias towards small errors, on these few points only). Failing all, the best
   ** fitting window. */
-  s2 = pilot * pilot;
   for (n = 0, k = 0; k < m; k++) {
     double best = INFINITY, pick = -1.0, side = INFINITY;
+    if ((k & 4095) == 4095 && bsfit__interrupted(a)) {
+      bsfit__free(a, r, bytes);
+      return bsfit__fail(st, BSFIT_EINTR, "noise estimate interrupted");
+    }
     for (i = 0; i < NKINDS; i++) {
-      if (!predict(pts, m, dim, closed, k, &kinds[i], &z2, &f)) continue;
-      if (f <= misfit_ok[i] * s2) {
-        if (i < NCENTRED) { pick = z2; side = -1.0; break; }
-        if (z2 < side) side = z2;
+      if (!predict(pts, m, dim, closed, k, &kinds[i], &z, &f)) continue;
+      /* misfit <= ok sigma^2, compared as square roots (f is one) */
+      if (f <= sqrt(misfit_ok[i]) * pilot) {
+        if (i < NCENTRED) { pick = z; side = -1.0; break; }
+        if (z < side) side = z;
       } else if (f < best) {
-        best = f, pick = z2;
+        best = f, pick = z;
       }
     }
     if (side >= 0 && side < INFINITY) pick = side;
-    if (pick >= 0) r[n++] = sqrt(pick);
+    if (pick >= 0) r[n++] = pick;
   }
   *sigma = robust_scale(r, n, dim);
-  bsfit__free(NULL, r, bytes);
+  bsfit__free(a, r, bytes);
   return bsfit__ok(st);
 }

@@ -7,11 +7,16 @@
 
 #include <math.h>
 
+/* |a - b| scaled by its largest component (hypot's way): squares of differences below
+** 1e-154 underflow to 0 and a chord of 1e-300 would vanish, making a zero total and 0/0
+** parameters; scaled, every positive difference gives a positive chord */
 static double chord(const double *a, const double *b, int dim) {
-  double s = 0.0;
+  double s = 0.0, big = 0.0;
   int k;
-  for (k = 0; k < dim; k++) s += (a[k] - b[k]) * (a[k] - b[k]);
-  return sqrt(s);
+  for (k = 0; k < dim; k++) big = fmax(big, fabs(a[k] - b[k]));
+  if (big == 0.0) return 0.0;
+  for (k = 0; k < dim; k++) s += ((a[k] - b[k]) / big) * ((a[k] - b[k]) / big);
+  return big * sqrt(s);
 }
 
 /* Length of the step between two consecutive points under the chosen kind. Uniform
@@ -34,9 +39,12 @@ static bsfit_err check_input(const double *pts, size_t m, int dim, bsfit_param_k
   if (kind != BSFIT_PARAM_UNIFORM && kind != BSFIT_PARAM_CHORD && kind != BSFIT_PARAM_CENTRIPETAL)
     return bsfit__fail(st, BSFIT_EINVAL, "unknown parameter kind %d", (int)kind);
   if (m < 2) return bsfit__fail(st, BSFIT_ETOOFEW, "parameters need at least 2 points, got %zu", m);
-  for (k = 0; k < m * d; k++)
-    if (!isfinite(pts[k]))
-      return bsfit__fail(st, BSFIT_ENONFINITE, "point %zu has a NaN or Inf coordinate", k / d);
+  k = bsfit__first_out_of_range(pts, m * d);
+  if (k < m * d && !isfinite(pts[k]))
+    return bsfit__fail(st, BSFIT_ENONFINITE, "point %zu has a NaN or Inf coordinate", k / d);
+  if (k < m * d)
+    return bsfit__fail(st, BSFIT_ERANGE, "point %zu has a coordinate %g beyond 1e100", k / d,
+                       pts[k]);
   for (k = d; k < m * d && coincident; k++) coincident = pts[k] == pts[k % d];
   if (coincident) return bsfit__fail(st, BSFIT_EDEGENERATE, "all %zu points coincide", m);
   return BSFIT_OK;
@@ -59,7 +67,8 @@ bsfit_err bsfit_params(const double *pts, size_t m, int dim, bsfit_param_kind ki
   u[0] = 0.0;
   for (k = 1; k < m; k++) {
     acc += step(pts + (k - 1) * d, pts + k * d, dim, kind);
-    u[k] = acc / total;
+    /* the running sum may round past the total: parameters stay in [0, 1] */
+    u[k] = fmin(acc / total, 1.0);
   }
   /* open data ends exactly at 1 whatever the rounding of the running sum */
   if (!closed) u[m - 1] = 1.0;

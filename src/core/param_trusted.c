@@ -18,12 +18,13 @@ static bsfit_err check_weights(const double *w, size_t m, bsfit_status *st) {
 }
 
 /* median of the weights (copy, selection) */
-static bsfit_err median_weight(const double *w, size_t m, double *med, bsfit_status *st) {
-  double *tmp = bsfit__alloc(NULL, m * sizeof(double));
+static bsfit_err median_weight(const double *w, size_t m, double *med, const bsfit_allocator *a,
+                               bsfit_status *st) {
+  double *tmp = bsfit__alloc(a, m * sizeof(double));
   if (tmp == NULL) return bsfit__fail(st, BSFIT_ENOMEM, "out of memory for %zu weights", m);
   memcpy(tmp, w, m * sizeof(double));
   *med = bsfit__select(tmp, m, m / 2);
-  bsfit__free(NULL, tmp, m * sizeof(double));
+  bsfit__free(a, tmp, m * sizeof(double));
   return BSFIT_OK;
 }
 
@@ -36,7 +37,7 @@ static void fill_gap(double *u, size_t m, size_t a, size_t b, double ua, double 
 
 bsfit_err bsfit_params_trusted(const double *pts, size_t m, int dim, bsfit_param_kind kind,
                                int closed, const double *w, double trust, double *u,
-                               bsfit_status *st) {
+                               const bsfit_allocator *a, bsfit_status *st) {
   size_t i, nt = 0, *idx = NULL, first, prev;
   double med = 0, *sub = NULL, *su = NULL, shift;
   bsfit_err e;
@@ -48,10 +49,10 @@ bsfit_err bsfit_params_trusted(const double *pts, size_t m, int dim, bsfit_param
   }
   if (pts == NULL || u == NULL) return bsfit__fail(st, BSFIT_EINVAL, "NULL points or parameters");
   if ((e = check_weights(w, m, st)) != BSFIT_OK) return e;
-  if ((e = median_weight(w, m, &med, st)) != BSFIT_OK) return e;
-  idx = bsfit__alloc(NULL, m * sizeof(size_t));
-  sub = bsfit__alloc(NULL, m * (size_t)dim * sizeof(double));
-  su = bsfit__alloc(NULL, m * sizeof(double));
+  if ((e = median_weight(w, m, &med, a, st)) != BSFIT_OK) return e;
+  idx = bsfit__alloc(a, m * sizeof(size_t));
+  sub = bsfit__alloc(a, m * (size_t)dim * sizeof(double));
+  su = bsfit__alloc(a, m * sizeof(double));
   if (idx == NULL || sub == NULL || su == NULL) {
     e = bsfit__fail(st, BSFIT_ENOMEM, "out of memory for %zu points", m);
     goto done;
@@ -89,9 +90,9 @@ bsfit_err bsfit_params_trusted(const double *pts, size_t m, int dim, bsfit_param
   }
   e = bsfit__ok(st);
 done:
-  bsfit__free(NULL, idx, m * sizeof(size_t));
-  bsfit__free(NULL, sub, m * (size_t)dim * sizeof(double));
-  bsfit__free(NULL, su, m * sizeof(double));
+  bsfit__free(a, idx, m * sizeof(size_t));
+  bsfit__free(a, sub, m * (size_t)dim * sizeof(double));
+  bsfit__free(a, su, m * sizeof(double));
   return e;
 }
 

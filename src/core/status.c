@@ -32,6 +32,7 @@ static const err_info err_table[] = {
   {BSFIT_ETOOFEW, "ETOOFEW", "too few points"},
   {BSFIT_EDEGENERATE, "EDEGENERATE", "degenerate geometry"},
   {BSFIT_ENOTPERIODIC, "ENOTPERIODIC", "curve is not in periodic form"},
+  {BSFIT_ERANGE, "ERANGE", "value beyond the supported range"},
   {BSFIT_ESINGULAR, "ESINGULAR", "singular system"},
   {BSFIT_ENOTSPD, "ENOTSPD", "matrix not positive definite"},
   {BSFIT_ENOCONV, "ENOCONV", "iteration did not converge"},

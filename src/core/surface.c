@@ -134,11 +134,15 @@ bsfit_err bsfit_surface_validate(const bsfit_surface *s, bsfit_status *st) {
   e = bsfit_knots_validate(s->knots_v, nknots_v(s), s->degree_v, s->nv, st);
   if (e != BSFIT_OK) return name_direction(st, e, 'v');
   np = npoints(s);
-  if (!bsfit__all_finite(s->ctrl, np * (size_t)s->dim))
+  i = bsfit__first_out_of_range(s->ctrl, np * (size_t)s->dim);
+  if (i < np * (size_t)s->dim && !isfinite(s->ctrl[i]))
     return bsfit__fail(st, BSFIT_ENONFINITE, "control points contain NaN or Inf");
+  if (i < np * (size_t)s->dim)
+    return bsfit__fail(st, BSFIT_ERANGE, "a control point has a coordinate %g beyond 1e100",
+                       s->ctrl[i]);
   for (i = 0; s->weights && i < np; i++)
-    if (!isfinite(s->weights[i]) || !(s->weights[i] > 0))
-      return bsfit__fail(st, BSFIT_EWEIGHT, "weight (%zu, %zu) is %g (must be positive and finite)",
+    if (!(s->weights[i] >= BSFIT_WEIGHT_MIN && s->weights[i] <= BSFIT_WEIGHT_MAX))
+      return bsfit__fail(st, BSFIT_EWEIGHT, "weight (%zu, %zu) is %g (must be in [1e-100, 1e100])",
                          i / s->nv, i % s->nv, s->weights[i]);
   if (s->periodic_u && (e = validate_periodic_u(s, st)) != BSFIT_OK) return e;
   if (s->bezier && (s->nu != (size_t)s->degree_u + 1 || s->nv != (size_t)s->degree_v + 1))
@@ -259,22 +263,39 @@ static void eval_bezier(const bsfit_surface *s, double u, double v, double *out)
   contract(s, 0, 0, Bu, Bv, out);
 }
 
+/* (u, v) finite and within one domain length of the domain in each direction: farther
+** out the end polynomials' extrapolation loses its digits (as for curves) */
+static bsfit_err check_uv(const bsfit_surface *s, double u, double v, bsfit_status *st) {
+  double ua, ub, va, vb;
+  if (!isfinite(u) || !isfinite(v))
+    return bsfit__fail(st, BSFIT_ENONFINITE, "parameter (%g, %g) is not finite", u, v);
+  bsfit_surface_domain(s, &ua, &ub, &va, &vb);
+  if (!(u >= ua - (ub - ua) && u <= ub + (ub - ua) && v >= va - (vb - va) && v <= vb + (vb - va)))
+    return bsfit__fail(st, BSFIT_EDOMAIN,
+                       "parameter (%g, %g) is more than one domain length outside the domain", u,
+                       v);
+  return BSFIT_OK;
+}
+
 bsfit_err bsfit_surface_eval(const bsfit_surface *s, double u, double v, double *out,
                              bsfit_status *st) {
   double Nu[BSFIT_MAX_DEGREE + 1], Nv[BSFIT_MAX_DEGREE + 1];
   size_t su, sv;
-  if (!isfinite(u) || !isfinite(v))
-    return bsfit__fail(st, BSFIT_ENONFINITE, "parameter (%g, %g) is not finite", u, v);
+  bsfit_err e;
+  if (isfinite(u)) u = wrap_u(s, u); /* a periodic direction has no outside */
+  e = check_uv(s, u, v, st);
+  if (e != BSFIT_OK) return e;
   if (s->bezier) {
     eval_bezier(s, u, v, out);
-    return bsfit__ok(st);
+  } else {
+    su = bsfit_knots_find_span(s->knots_u, s->nu, s->degree_u, u);
+    sv = bsfit_knots_find_span(s->knots_v, s->nv, s->degree_v, v);
+    bsfit_basis_funs(su, u, s->degree_u, s->knots_u, Nu);
+    bsfit_basis_funs(sv, v, s->degree_v, s->knots_v, Nv);
+    contract(s, su - (size_t)s->degree_u, sv - (size_t)s->degree_v, Nu, Nv, out);
   }
-  u = wrap_u(s, u);
-  su = bsfit_knots_find_span(s->knots_u, s->nu, s->degree_u, u);
-  sv = bsfit_knots_find_span(s->knots_v, s->nv, s->degree_v, v);
-  bsfit_basis_funs(su, u, s->degree_u, s->knots_u, Nu);
-  bsfit_basis_funs(sv, v, s->degree_v, s->knots_v, Nv);
-  contract(s, su - (size_t)s->degree_u, sv - (size_t)s->degree_v, Nu, Nv, out);
+  if (!bsfit__all_finite(out, (size_t)s->dim))
+    return bsfit__fail(st, BSFIT_ERANGE, "S(%g, %g) overflows (extrapolated)", u, v);
   return bsfit__ok(st);
 }
 
@@ -353,27 +374,43 @@ static void rational_derivs(size_t d, int k, const double *W, double *out) {
 bsfit_err bsfit_surface_derivs(const bsfit_surface *s, double u, double v, int k, double *out,
                                bsfit_status *st) {
   double W[KMAX * KMAX];
+  bsfit_err e;
   if (k < 0 || k > BSFIT_MAX_DEGREE)
     return bsfit__fail(st, BSFIT_EINVAL, "derivative order %d out of range 0..%d", k,
                        BSFIT_MAX_DEGREE);
-  if (!isfinite(u) || !isfinite(v))
-    return bsfit__fail(st, BSFIT_ENONFINITE, "parameter (%g, %g) is not finite", u, v);
-  homogeneous_derivs(s, wrap_u(s, u), v, k, out, W);
+  if (isfinite(u)) u = wrap_u(s, u); /* a periodic direction has no outside */
+  e = check_uv(s, u, v, st);
+  if (e != BSFIT_OK) return e;
+  homogeneous_derivs(s, u, v, k, out, W);
   if (s->weights != NULL) {
     rational_derivs((size_t)s->dim, k, W, out);
   }
+  if (!bsfit__all_finite(out, (size_t)(k + 1) * (size_t)(k + 1) * (size_t)s->dim))
+    return bsfit__fail(st, BSFIT_ERANGE, "derivatives of order <= %d at (%g, %g) overflow", k, u,
+                       v);
   return bsfit__ok(st);
 }
 
 bsfit_err bsfit_surface_normal(const bsfit_surface *s, double u, double v, double *out,
                                bsfit_status *st) {
-  double D[4 * 3], n[3], len, scale;
-  const double *Su = D + 2 * 3, *Sv = D + 1 * 3; /* (1,0) and (0,1) with k = 1 */
+  double D[4 * 3], n[3], len, scale, mu = 0.0, mv = 0.0;
+  double *Su = D + 2 * 3, *Sv = D + 1 * 3; /* (1,0) and (0,1) with k = 1 */
   bsfit_err e;
+  int q;
   if (s->dim != 3)
     return bsfit__fail(st, BSFIT_EDIM, "normals need a 3D surface, this one has dim %d", s->dim);
   e = bsfit_surface_derivs(s, u, v, 1, D, st);
   if (e != BSFIT_OK) return e;
+  /* the direction is all we need: scaled to components <= 1, the products below can
+  ** neither overflow (derivatives of 1e115 over tiny spans) nor underflow */
+  for (q = 0; q < 3; q++) {
+    mu = fmax(mu, fabs(Su[q]));
+    mv = fmax(mv, fabs(Sv[q]));
+  }
+  for (q = 0; q < 3 && mu > 0 && mv > 0; q++) {
+    Su[q] /= mu;
+    Sv[q] /= mv;
+  }
   n[0] = Su[1] * Sv[2] - Su[2] * Sv[1];
   n[1] = Su[2] * Sv[0] - Su[0] * Sv[2];
   n[2] = Su[0] * Sv[1] - Su[1] * Sv[0];

@@ -100,7 +100,7 @@ static bsfit_err section_shape(const bsfit_curve *c, shape *sh, const bsfit_allo
   bsfit_err e;
   int t;
   if (s == NULL) return bsfit__fail(st, BSFIT_ENOMEM, "out of memory for section samples");
-  e = bsfit_curve_sample(c, m, s, st);
+  e = bsfit_curve_sample(c, m, s, a, st);
   memset(sh, 0, sizeof *sh);
   for (i = 0; e == BSFIT_OK && i < m; i++)
     for (t = 0; t < 3; t++) sh->c[t] += s[i * 3 + t] / (double)m;
@@ -163,13 +163,14 @@ static bsfit_err rotate_start(const bsfit_curve *c, double u, bsfit_curve *out,
 ** carried over from the previous shape to this one (centroid, mean radius). A parameter
 ** within 1e-10 of a knot is moved onto it, so no sliver span is made. */
 static bsfit_err seam_param(const bsfit_curve *c, const shape *ps, const shape *sh,
-                            const double *prev, double *u, bsfit_status *st) {
+                            const double *prev, double *u, const bsfit_allocator *a,
+                            bsfit_status *st) {
   double P[3], scale = ps->radius > 0 ? sh->radius / ps->radius : 1.0;
   size_t i, p = (size_t)c->degree;
   int t;
   bsfit_err e;
   for (t = 0; t < 3; t++) P[t] = sh->c[t] + (prev[t] - ps->c[t]) * scale;
-  e = bsfit_curve_closest(c, P, u, NULL, st);
+  e = bsfit_curve_closest(c, P, u, NULL, a, st);
   if (e != BSFIT_OK) return e;
   for (i = p; i <= c->n; i++)
     if (fabs(c->knots[i] - *u) < 1e-10) *u = c->knots[i];
@@ -198,7 +199,7 @@ static bsfit_err orient_section(const bsfit_curve *c, size_t k, int align, bsfit
     sh[k].area[2] = -sh[k].area[2];
   }
   bsfit__curve_eval_unchecked(&w[k - 1], 0.0, start);
-  e = seam_param(&w[k], &sh[k - 1], &sh[k], start, &u, st);
+  e = seam_param(&w[k], &sh[k - 1], &sh[k], start, &u, a, st);
   if (e != BSFIT_OK || u == 0.0) goto done;
   bsfit_curve_init(&tmp);
   e = rotate_start(&w[k], u, &tmp, a, st);

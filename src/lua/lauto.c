@@ -36,8 +36,11 @@ static int auto_params_trusted(lua_State *L) {
   luaL_argcheck(L, trust >= 0 && trust < 1, 3, "field 'trust' must be in [0, 1)");
   bsfit__lua_checkfinite(L, 1, P);
   u = bsfit__lua_newvector(L, P->n);
-  e = bsfit_params_trusted(P->xy, P->n, (int)P->dim, (bsfit_param_kind)kind, closed, w, trust,
-                           u->x, &st);
+  {
+    bsfit_allocator a = bsfit__lua_allocator(L);
+    e = bsfit_params_trusted(P->xy, P->n, (int)P->dim, (bsfit_param_kind)kind, closed, w, trust,
+                             u->x, &a, &st);
+  }
   return bsfit__lua_result(L, e, &st, 1, 1);
 }
 
@@ -77,7 +80,11 @@ static int auto_knots_breaks(lua_State *L) {
   luaL_argcheck(L, n >= 2 && n <= (lua_Integer)(1 << 28), 1, "field 'count' out of range");
   bv = read_breaks(L, 1, u->n);
   scratch = bsfit__lua_allocvector(L, (size_t)n + 1); /* room for the count asked */
-  e = bsfit_knots_place_breaks(u->x, u->n, (int)p, (size_t)n, bv->x, bv->n, scratch->x, &N, &st);
+  {
+    bsfit_allocator a = bsfit__lua_allocator(L);
+    e = bsfit_knots_place_breaks(u->x, u->n, (int)p, (size_t)n, bv->x, bv->n, scratch->x, &N,
+                                 &a, &st);
+  }
   if (e != BSFIT_OK) return bsfit__lua_result(L, e, &st, 0, 1);
   /* the guard may have merged spans: the result has the N + 1 knots actually placed */
   period = bsfit__lua_allocvector(L, N + 1);

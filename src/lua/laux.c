@@ -280,10 +280,15 @@ size_t bsfit__lua_checkcount(lua_State *L, int arg, lua_Integer lo, lua_Integer 
 
 void bsfit__lua_checkfinite(lua_State *L, int arg, const bsfit_points_ud *P) {
   size_t i, len = P->n * P->dim;
-  for (i = 0; i < len; i++)
+  for (i = 0; i < len; i++) {
     if (!isfinite(P->xy[i]))
       luaL_argerror(L, arg, lua_pushfstring(L, "point %I has a non-finite coordinate",
                                             (lua_Integer)(i / P->dim) + 1));
+    if (fabs(P->xy[i]) > BSFIT_COORD_MAX) /* the core's range (docs/robustness-core.md) */
+      luaL_argerror(L, arg, lua_pushfstring(L, "point %I has a coordinate %s beyond 1e100",
+                                            (lua_Integer)(i / P->dim) + 1,
+                                            number_text(L, P->xy[i])));
+  }
 }
 
 void bsfit__lua_checkknotvalues(lua_State *L, int arg, const double *U, size_t n, int p) {

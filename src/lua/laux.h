@@ -144,7 +144,7 @@ size_t bsfit__lua_checkcount(lua_State *L, int arg, lua_Integer lo, lua_Integer 
 /* Input checks done by the binding before the core sees the data, so that the
 ** messages count points and weights from 1 as Lua users do (core messages count
 ** from 0). Both raise an argument error naming `arg`:
-**   `point 3 has a non-finite coordinate`
+**   `point 3 has a non-finite coordinate`, `point 3 has a coordinate 1e+200 beyond 1e100`
 **   `weight 2 is -1 (must be positive and finite)` */
 void bsfit__lua_checkfinite(lua_State *L, int arg, const bsfit_points_ud *P);
 void bsfit__lua_checkweights(lua_State *L, int arg, const double *w, size_t n);

@@ -258,7 +258,8 @@ static int curve_sample(lua_State *L) {
   size_t k = lua_isnoneornil(L, 2) ? 1000 : bsfit__lua_checkcount(L, 2, 2, LUA_MAXINTEGER);
   bsfit_points_ud *P = bsfit__lua_allocpoints(L, k, (size_t)c->dim);
   bsfit_status st;
-  bsfit_err e = bsfit_curve_sample(c, k, P->xy, &st);
+  bsfit_allocator a = bsfit__lua_allocator(L);
+  bsfit_err e = bsfit_curve_sample(c, k, P->xy, &a, &st);
   if (e != BSFIT_OK) return bsfit__lua_raise(L, e, &st, 2);
   return 1;
 }
@@ -335,7 +336,10 @@ static int curve_closest(lua_State *L) {
   }
   if (!lua_isnone(L, 2 + c->dim))
     return luaL_argerror(L, 2 + c->dim, lua_pushfstring(L, "too many coordinates (curve has %d)", c->dim));
-  e = bsfit_curve_closest(c, x, &u, &dist, &st);
+  {
+    bsfit_allocator a = bsfit__lua_allocator(L); /* scratch counted by the memory cap */
+    e = bsfit_curve_closest(c, x, &u, &dist, &a, &st);
+  }
   if (e != BSFIT_OK) return bsfit__lua_raise(L, e, &st, 0);
   lua_pushnumber(L, u);
   lua_pushnumber(L, dist);
@@ -365,7 +369,10 @@ static int curve_project(lua_State *L) {
   u = bsfit__lua_newvector(L, P->n);
   dist = bsfit__lua_newvector(L, P->n);
   if (P->n) memcpy(u->x, u0->x, P->n * sizeof(double));
-  e = bsfit_curve_project_many(c, P->xy, P->n, u->x, dist->x, (int)iters, &st);
+  {
+    bsfit_allocator a = bsfit__lua_allocator(L);
+    e = bsfit_curve_project_many(c, P->xy, P->n, u->x, dist->x, (int)iters, &a, &st);
+  }
   if (e != BSFIT_OK) return bsfit__lua_raise(L, e, &st, 2);
   return 2;
 }
@@ -383,7 +390,10 @@ static int curve_closest_many(lua_State *L) {
   bsfit__lua_checkfinite(L, 2, P);
   u = bsfit__lua_allocvector(L, P->n);
   dist = bsfit__lua_allocvector(L, P->n);
-  e = bsfit_curve_closest_many(c, P->xy, P->n, u->x, dist->x, &st);
+  {
+    bsfit_allocator a = bsfit__lua_allocator(L);
+    e = bsfit_curve_closest_many(c, P->xy, P->n, u->x, dist->x, &a, &st);
+  }
   if (e != BSFIT_OK) return bsfit__lua_raise(L, e, &st, 2);
   return 2;
 }
@@ -479,7 +489,8 @@ static int ends_with(const char *s, size_t len, const char *ext) {
 static bsfit_err write_csv(lua_State *L, const bsfit_curve *c, const char *path, size_t k,
                            bsfit_status *st) {
   bsfit_points_ud *P = bsfit__lua_allocpoints(L, k, (size_t)c->dim);
-  bsfit_err e = bsfit_curve_sample(c, k, P->xy, st);
+  bsfit_allocator a = bsfit__lua_allocator(L);
+  bsfit_err e = bsfit_curve_sample(c, k, P->xy, &a, st);
   if (e == BSFIT_OK) e = bsfit_points_write(path, P->xy, k, c->dim, NULL, st);
   return e;
 }

@@ -102,7 +102,8 @@ static int geom_noise_sigma(lua_State *L) {
   bsfit_points_ud *P = kernel_args(L, opts_closed, &t, &closed);
   double sigma = 0.0;
   bsfit_status st;
-  bsfit_err e = bsfit_noise_sigma(P->xy, P->n, (int)P->dim, closed, &sigma, &st);
+  bsfit_allocator a = bsfit__lua_allocator(L);
+  bsfit_err e = bsfit_noise_sigma(P->xy, P->n, (int)P->dim, closed, &sigma, &a, &st);
   lua_pushnumber(L, sigma);
   return bsfit__lua_result(L, e, &st, 1, 1);
 }

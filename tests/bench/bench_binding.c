@@ -57,7 +57,7 @@ int main(void) {
     free(res);
     t0 = now();
     out = malloc(m * 2 * sizeof(double));
-    if (!out || bsfit_curve_sample(&c, m, out, NULL) != BSFIT_OK) return 1;
+    if (!out || bsfit_curve_sample(&c, m, out, NULL, NULL) != BSFIT_OK) return 1;
     best_sample = fmin(best_sample, now() - t0);
     free(out);
   }

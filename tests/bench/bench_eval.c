@@ -90,7 +90,7 @@ static double best_closest(const bsfit_curve *c, const double *pts, size_t m, do
   int r;
   for (r = 0; r < runs; r++) {
     double t0 = now(), dt;
-    if (bsfit_curve_closest_many(c, pts, m, u, d, NULL) != BSFIT_OK) return -1.0;
+    if (bsfit_curve_closest_many(c, pts, m, u, d, NULL, NULL) != BSFIT_OK) return -1.0;
     dt = now() - t0;
     if (dt < best) best = dt;
   }

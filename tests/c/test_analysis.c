@@ -19,7 +19,7 @@
 static void check_sigma(const double *xy, size_t m, int closed, double truth) {
   double est;
   bsfit_status st;
-  assert_int_equal(bsfit_noise_sigma(xy, m, 2, closed, &est, &st), BSFIT_OK);
+  assert_int_equal(bsfit_noise_sigma(xy, m, 2, closed, &est, NULL, &st), BSFIT_OK);
   if (fabs(est - truth) > 0.2 * truth)
     fail_msg("sigma estimate %.4g vs truth %.4g (m = %zu)", est, truth, m);
 }
@@ -60,11 +60,11 @@ static void test_noise_errors(void **state) {
   double xy[20] = {0}, s;
   bsfit_status st;
   (void)state;
-  assert_int_equal(bsfit_noise_sigma(xy, 5, 2, 1, &s, &st), BSFIT_ETOOFEW);
-  assert_int_equal(bsfit_noise_sigma(xy, 8, 4, 1, &s, &st), BSFIT_EDIM);
-  assert_int_equal(bsfit_noise_sigma(xy, 8, 2, 1, &s, &st), BSFIT_EDEGENERATE);
+  assert_int_equal(bsfit_noise_sigma(xy, 5, 2, 1, &s, NULL, &st), BSFIT_ETOOFEW);
+  assert_int_equal(bsfit_noise_sigma(xy, 8, 4, 1, &s, NULL, &st), BSFIT_EDIM);
+  assert_int_equal(bsfit_noise_sigma(xy, 8, 2, 1, &s, NULL, &st), BSFIT_EDEGENERATE);
   xy[3] = NAN;
-  assert_int_equal(bsfit_noise_sigma(xy, 8, 2, 1, &s, &st), BSFIT_ENONFINITE);
+  assert_int_equal(bsfit_noise_sigma(xy, 8, 2, 1, &s, NULL, &st), BSFIT_ENONFINITE);
   assert_true(strlen(st.msg) > 0);
 }
 

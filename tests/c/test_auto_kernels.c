@@ -21,7 +21,7 @@ static void test_trusted_params_without_weights_are_chord_params(void **state) {
   (void)state;
   make_shape(&r, SHAPE_ELLIPSE, 200, 1, 1e-3, xy);
   assert_int_equal(bsfit_params(xy, 200, 2, BSFIT_PARAM_CHORD, 1, u1, NULL), BSFIT_OK);
-  assert_int_equal(bsfit_params_trusted(xy, 200, 2, BSFIT_PARAM_CHORD, 1, NULL, 0.1, u2, NULL), BSFIT_OK);
+  assert_int_equal(bsfit_params_trusted(xy, 200, 2, BSFIT_PARAM_CHORD, 1, NULL, 0.1, u2, NULL, NULL), BSFIT_OK);
   for (i = 0; i < 200; i++) assert_float_equal(u1[i], u2[i], 0.0);
 }
 
@@ -44,7 +44,7 @@ static void test_outlier_does_not_stretch_neighbours(void **state) {
       clean[2 * j + 1] = xy[2 * i + 1];
       j++;
     }
-  assert_int_equal(bsfit_params_trusted(xy, 100, 2, BSFIT_PARAM_CHORD, 1, w, 0.1, u, NULL), BSFIT_OK);
+  assert_int_equal(bsfit_params_trusted(xy, 100, 2, BSFIT_PARAM_CHORD, 1, w, 0.1, u, NULL, NULL), BSFIT_OK);
   assert_int_equal(bsfit_params(clean, 99, 2, BSFIT_PARAM_CHORD, 1, uc, NULL), BSFIT_OK);
   for (i = 0, j = 0; i < 100; i++) {
     if (i == k) continue;
@@ -57,7 +57,7 @@ static void test_outlier_does_not_stretch_neighbours(void **state) {
   w[k] = 1.0;
   w[0] = 1e-4;
   first = 0;
-  assert_int_equal(bsfit_params_trusted(xy, 100, 2, BSFIT_PARAM_CHORD, 1, w, 0.1, u, NULL), BSFIT_OK);
+  assert_int_equal(bsfit_params_trusted(xy, 100, 2, BSFIT_PARAM_CHORD, 1, w, 0.1, u, NULL, NULL), BSFIT_OK);
   assert_float_equal(u[first], 0.0, 0.0);
   for (i = 1; i < 100; i++) assert_true(u[i] >= u[i - 1] && u[i] < 1.0);
 }
@@ -66,13 +66,13 @@ static void test_trusted_params_errors(void **state) {
   double xy[12] = {0, 0, 1, 0, 1, 1, 0, 1, 0.5, 0.5, 0.2, 0.1}, w[6] = {1, 1, 1, 1, 1, 1}, u[6];
   bsfit_status st;
   (void)state;
-  assert_int_equal(bsfit_params_trusted(xy, 6, 2, BSFIT_PARAM_CHORD, 1, w, 1.5, u, &st), BSFIT_EINVAL);
+  assert_int_equal(bsfit_params_trusted(xy, 6, 2, BSFIT_PARAM_CHORD, 1, w, 1.5, u, NULL, &st), BSFIT_EINVAL);
   w[2] = 0.0;
-  assert_int_equal(bsfit_params_trusted(xy, 6, 2, BSFIT_PARAM_CHORD, 1, w, 0.1, u, &st), BSFIT_EWEIGHT);
+  assert_int_equal(bsfit_params_trusted(xy, 6, 2, BSFIT_PARAM_CHORD, 1, w, 0.1, u, NULL, &st), BSFIT_EWEIGHT);
   w[2] = NAN;
-  assert_int_equal(bsfit_params_trusted(xy, 6, 2, BSFIT_PARAM_CHORD, 1, w, 0.1, u, &st), BSFIT_EWEIGHT);
+  assert_int_equal(bsfit_params_trusted(xy, 6, 2, BSFIT_PARAM_CHORD, 1, w, 0.1, u, NULL, &st), BSFIT_EWEIGHT);
   w[2] = 1.0;
-  assert_int_equal(bsfit_params_trusted(NULL, 6, 2, BSFIT_PARAM_CHORD, 1, w, 0.5, u, &st), BSFIT_EINVAL);
+  assert_int_equal(bsfit_params_trusted(NULL, 6, 2, BSFIT_PARAM_CHORD, 1, w, 0.5, u, NULL, &st), BSFIT_EINVAL);
   assert_true(strlen(st.msg) > 0);
 }
 
@@ -106,12 +106,12 @@ static void test_breaks_none_is_guarded_periodic_averaging(void **state) {
   (void)state;
   make_shape(&r, SHAPE_STAR, 300, 1, 0.0, xy);
   assert_int_equal(bsfit_params(xy, 300, 2, BSFIT_PARAM_CHORD, 1, u, NULL), BSFIT_OK);
-  assert_int_equal(bsfit_knots_place_breaks(u, 300, 3, 40, NULL, 0, t, &N, NULL), BSFIT_OK);
+  assert_int_equal(bsfit_knots_place_breaks(u, 300, 3, 40, NULL, 0, t, &N, NULL, NULL), BSFIT_OK);
   assert_int_equal(N, 40);
   assert_float_equal(t[0], 0.0, 0.0);
   check_period(u, 300, t, N, 3);
   /* asking for as many knots as points: the guard merges spans to >= 2 points each */
-  assert_int_equal(bsfit_knots_place_breaks(u, 300, 3, 300, NULL, 0, t, &N, NULL), BSFIT_OK);
+  assert_int_equal(bsfit_knots_place_breaks(u, 300, 3, 300, NULL, 0, t, &N, NULL, NULL), BSFIT_OK);
   assert_true(N <= 150 && N >= 100);
   check_period(u, 300, t, N, 3);
 }
@@ -122,7 +122,7 @@ static void test_guard_with_clustered_parameters(void **state) {
   size_t i, N;
   (void)state;
   for (i = 0; i < 60; i++) u[i] = (double)(i / 20) / 3.0 + 1e-4 * (double)(i % 20);
-  assert_int_equal(bsfit_knots_place_breaks(u, 60, 3, 30, NULL, 0, t, &N, NULL), BSFIT_OK);
+  assert_int_equal(bsfit_knots_place_breaks(u, 60, 3, 30, NULL, 0, t, &N, NULL, NULL), BSFIT_OK);
   check_period(u, 60, t, N, 3);
 }
 
@@ -141,7 +141,7 @@ static void test_square_with_corner_breaks_is_fitted_exactly(void **state) {
   (void)state;
   make_polygon(&r, sq, 4, 200, 0.0, xy);
   assert_int_equal(bsfit_params(xy, 200, 2, BSFIT_PARAM_CHORD, 1, u, NULL), BSFIT_OK);
-  assert_int_equal(bsfit_knots_place_breaks(u, 200, 3, 24, corners, 4, t, &N, NULL), BSFIT_OK);
+  assert_int_equal(bsfit_knots_place_breaks(u, 200, 3, 24, corners, 4, t, &N, NULL, NULL), BSFIT_OK);
   assert_int_equal(N, 24);
   check_period(u, 200, t, N, 3);
   for (k = 0; k < 4; k++) { /* each corner parameter is a triple knot */
@@ -171,12 +171,12 @@ static void test_breaks_errors(void **state) {
   bsfit_status st;
   (void)state;
   for (i = 0; i < 10; i++) u[i] = (double)i / 10.0;
-  assert_int_equal(bsfit_knots_place_breaks(u, 10, 0, 5, NULL, 0, t, &N, &st), BSFIT_EDEGREE);
-  assert_int_equal(bsfit_knots_place_breaks(u, 10, 3, 5, bad, 2, t, &N, &st), BSFIT_EINVAL);
-  assert_int_equal(bsfit_knots_place_breaks(u, 10, 3, 5, far, 1, t, &N, &st), BSFIT_EINVAL);
-  assert_int_equal(bsfit_knots_place_breaks(u, 10, 3, 3, NULL, 0, t, &N, &st), BSFIT_EINVAL);
+  assert_int_equal(bsfit_knots_place_breaks(u, 10, 0, 5, NULL, 0, t, &N, NULL, &st), BSFIT_EDEGREE);
+  assert_int_equal(bsfit_knots_place_breaks(u, 10, 3, 5, bad, 2, t, &N, NULL, &st), BSFIT_EINVAL);
+  assert_int_equal(bsfit_knots_place_breaks(u, 10, 3, 5, far, 1, t, &N, NULL, &st), BSFIT_EINVAL);
+  assert_int_equal(bsfit_knots_place_breaks(u, 10, 3, 3, NULL, 0, t, &N, NULL, &st), BSFIT_EINVAL);
   u[4] = 0.1;
-  assert_int_equal(bsfit_knots_place_breaks(u, 10, 3, 5, NULL, 0, t, &N, &st), BSFIT_EINVAL);
+  assert_int_equal(bsfit_knots_place_breaks(u, 10, 3, 5, NULL, 0, t, &N, NULL, &st), BSFIT_EINVAL);
   assert_true(strlen(st.msg) > 0);
 }
 

@@ -139,7 +139,7 @@ static void test_convex_hull_bounding_box(void **state) {
       lo[1] = fmin(lo[1], c.ctrl[2 * i + 1]);
       hi[1] = fmax(hi[1], c.ctrl[2 * i + 1]);
     }
-    assert_int_equal(bsfit_curve_sample(&c, 201, out, NULL), BSFIT_OK);
+    assert_int_equal(bsfit_curve_sample(&c, 201, out, NULL, NULL), BSFIT_OK);
     for (i = 0; i < 201; i++) {
       assert_true(out[2 * i] >= lo[0] - 1e-12 && out[2 * i] <= hi[0] + 1e-12);
       assert_true(out[2 * i + 1] >= lo[1] - 1e-12 && out[2 * i + 1] <= hi[1] + 1e-12);

@@ -93,7 +93,7 @@ static void check_index(test_rng *r, const double *smp, size_t K, size_t d, size
   bsfit__nearest nn;
   bsfit_status st;
   size_t nq = make_queries(r, smp, K, d, Q, MAXQ), i;
-  assert_int_equal(bsfit__nearest_init(&nn, smp, K, d, queries, &st), BSFIT_OK);
+  assert_int_equal(bsfit__nearest_init(&nn, smp, K, d, queries, NULL, &st), BSFIT_OK);
   if (K >= 1000 && queries >= 1000) assert_true(nn.depth > 0); /* not only scans tested */
   for (i = 0; i < nq; i++) {
     size_t got = bsfit__nearest_find(&nn, Q + i * d), want = scan_nearest(smp, K, d, Q + i * d);
@@ -221,15 +221,15 @@ static void check_curve(const bsfit_curve *c, const double *pts, size_t m, size_
   static double u[MAXM], dist[MAXM], ub[MAXM], db[MAXM], u1[MAXM], d1[MAXM], un[MAXM];
   size_t d = (size_t)c->dim, i, j;
   bsfit_status st;
-  assert_int_equal(bsfit_curve_closest_many(c, pts, m, u, dist, &st), BSFIT_OK);
+  assert_int_equal(bsfit_curve_closest_many(c, pts, m, u, dist, NULL, &st), BSFIT_OK);
   for (i = 0; i < m; i += 7) { /* batches of 7: too few for a tree */
     size_t nb = m - i < 7 ? m - i : 7;
-    assert_int_equal(bsfit_curve_closest_many(c, pts + i * d, nb, ub + i, db + i, NULL), BSFIT_OK);
+    assert_int_equal(bsfit_curve_closest_many(c, pts + i * d, nb, ub + i, db + i, NULL, NULL), BSFIT_OK);
   }
   for (j = 0; j < m; j++)
-    assert_int_equal(bsfit_curve_closest(c, pts + j * d, u1 + j, d1 + j, NULL), BSFIT_OK);
+    assert_int_equal(bsfit_curve_closest(c, pts + j * d, u1 + j, d1 + j, NULL, NULL), BSFIT_OK);
   /* no distances asked for: the same parameters */
-  assert_int_equal(bsfit_curve_closest_many(c, pts, m, un, NULL, NULL), BSFIT_OK);
+  assert_int_equal(bsfit_curve_closest_many(c, pts, m, un, NULL, NULL, NULL), BSFIT_OK);
   assert_same_bits(u, u1, m, "u", curve);
   assert_same_bits(dist, d1, m, "dist", curve);
   assert_same_bits(ub, u1, m, "u (batches)", curve);
@@ -295,19 +295,19 @@ static void test_errors(void **state) {
   random_curve(&r, &c, 3, 2, 30, 1, 0, 0);
   for (i = 0; i < 64 * 2; i++) pts[i] = rng_range(&r, -2.0, 2.0);
   pts[77] = NAN;
-  assert_int_equal(bsfit_curve_closest_many(&c, pts, 64, u, dist, &st), BSFIT_ENONFINITE);
+  assert_int_equal(bsfit_curve_closest_many(&c, pts, 64, u, dist, NULL, &st), BSFIT_ENONFINITE);
   assert_int_equal(st.code, BSFIT_ENONFINITE);
   pts[77] = -INFINITY;
-  assert_int_equal(bsfit_curve_closest_many(&c, pts, 64, u, dist, NULL), BSFIT_ENONFINITE);
+  assert_int_equal(bsfit_curve_closest_many(&c, pts, 64, u, dist, NULL, NULL), BSFIT_ENONFINITE);
   pts[77] = 0.5;
-  assert_int_equal(bsfit_curve_closest_many(&c, NULL, 64, u, dist, &st), BSFIT_EINVAL);
-  assert_int_equal(bsfit_curve_closest_many(&c, pts, 64, NULL, dist, &st), BSFIT_EINVAL);
+  assert_int_equal(bsfit_curve_closest_many(&c, NULL, 64, u, dist, NULL, &st), BSFIT_EINVAL);
+  assert_int_equal(bsfit_curve_closest_many(&c, pts, 64, NULL, dist, NULL, &st), BSFIT_EINVAL);
   u[0] = dist[0] = 12345.0;
-  assert_int_equal(bsfit_curve_closest_many(&c, pts, 0, u, dist, &st), BSFIT_OK);
-  assert_int_equal(bsfit_curve_closest_many(&c, NULL, 0, NULL, NULL, &st), BSFIT_OK);
+  assert_int_equal(bsfit_curve_closest_many(&c, pts, 0, u, dist, NULL, &st), BSFIT_OK);
+  assert_int_equal(bsfit_curve_closest_many(&c, NULL, 0, NULL, NULL, NULL, &st), BSFIT_OK);
   assert_float_equal(u[0], 12345.0, 0.0);
   assert_float_equal(dist[0], 12345.0, 0.0);
-  assert_int_equal(bsfit_curve_closest_many(NULL, pts, 64, u, dist, &st) != BSFIT_OK, 1);
+  assert_int_equal(bsfit_curve_closest_many(NULL, pts, 64, u, dist, NULL, &st) != BSFIT_OK, 1);
   bsfit_curve_free(&c);
 }
 

@@ -399,12 +399,12 @@ static void test_closest_known_offsets(void **state) {
     delta = rng_range(&r, -1.0, 1.0);
     Q[0] = D[0] + delta * nrm[0];
     Q[1] = D[1] + delta * nrm[1];
-    assert_int_equal(bsfit_curve_closest(&c, Q, &u, &dist, NULL), BSFIT_OK);
+    assert_int_equal(bsfit_curve_closest(&c, Q, &u, &dist, NULL, NULL), BSFIT_OK);
     assert_float_equal(u, u0, 1e-9);
     assert_float_equal(dist, fabs(delta), 1e-12);
     /* the vectorised projection from a nearby start */
     ustart = u0 + rng_range(&r, -0.02, 0.02);
-    assert_int_equal(bsfit_curve_project_many(&c, Q, 1, &ustart, &dd, 20, NULL), BSFIT_OK);
+    assert_int_equal(bsfit_curve_project_many(&c, Q, 1, &ustart, &dd, 20, NULL, NULL), BSFIT_OK);
     assert_float_equal(ustart, u0, 1e-9);
     assert_float_equal(dd, fabs(delta), 1e-12);
   }
@@ -416,7 +416,7 @@ static void test_closest_known_offsets(void **state) {
     sp = hypot(D[2], D[3]);
     Q[0] = D[0] + D[2] / sp;
     Q[1] = D[1] + D[3] / sp;
-    assert_int_equal(bsfit_curve_closest(&c, Q, &u, &dist, NULL), BSFIT_OK);
+    assert_int_equal(bsfit_curve_closest(&c, Q, &u, &dist, NULL, NULL), BSFIT_OK);
     assert_float_equal(u, 1.0, 0.0);
     assert_float_equal(dist, 1.0, 1e-12);
   }
@@ -432,14 +432,14 @@ static void test_sample(void **state) {
   random_curve(&r, &c, 3, 6, 2, 2, 0); /* periodic: k points over [a, b) */
   a = dom_a(&c);
   b = dom_b(&c);
-  assert_int_equal(bsfit_curve_sample(&c, 5, out, NULL), BSFIT_OK);
+  assert_int_equal(bsfit_curve_sample(&c, 5, out, NULL, NULL), BSFIT_OK);
   for (i = 0; i < 5; i++) {
     bsfit_curve_eval(&c, a + (b - a) * (double)i / 5.0, x, NULL);
     assert_float_equal(out[2 * i], x[0], 1e-14);
   }
   bsfit_curve_free(&c);
   random_curve(&r, &c, 2, 6, 2, 1, 0); /* open: both ends included */
-  assert_int_equal(bsfit_curve_sample(&c, 5, out, NULL), BSFIT_OK);
+  assert_int_equal(bsfit_curve_sample(&c, 5, out, NULL, NULL), BSFIT_OK);
   bsfit_curve_eval(&c, dom_b(&c), x, NULL);
   assert_float_equal(out[8], x[0], 0.0);
   assert_float_equal(out[9], x[1], 0.0);
@@ -556,14 +556,14 @@ static void test_invalid_inputs(void **state) {
   EXPECT(bsfit_curve_length(&c, 0.1, b + 1.0, &len, &st), BSFIT_EDOMAIN);
   EXPECT(bsfit_curve_length(&c, 0.1, 0.2, NULL, &st), BSFIT_EINVAL);
   P[1] = nan;
-  EXPECT(bsfit_curve_closest(&c, P, &u, NULL, &st), BSFIT_ENONFINITE);
-  EXPECT(bsfit_curve_closest(&c, NULL, &u, NULL, &st), BSFIT_EINVAL);
-  EXPECT(bsfit_curve_project_many(&c, P, 1, &u, NULL, 5, &st), BSFIT_ENONFINITE);
+  EXPECT(bsfit_curve_closest(&c, P, &u, NULL, NULL, &st), BSFIT_ENONFINITE);
+  EXPECT(bsfit_curve_closest(&c, NULL, &u, NULL, NULL, &st), BSFIT_EINVAL);
+  EXPECT(bsfit_curve_project_many(&c, P, 1, &u, NULL, 5, NULL, &st), BSFIT_ENONFINITE);
   P[1] = 0.0;
-  EXPECT(bsfit_curve_project_many(&c, P, 1, &u, NULL, -1, &st), BSFIT_EINVAL);
-  EXPECT(bsfit_curve_project_many(&c, P, 1, &nan, NULL, 5, &st), BSFIT_ENONFINITE);
-  EXPECT(bsfit_curve_sample(&c, 1, out, &st), BSFIT_EINVAL);
-  EXPECT(bsfit_curve_sample(&empty, 3, out, &st), BSFIT_EINVAL);
+  EXPECT(bsfit_curve_project_many(&c, P, 1, &u, NULL, -1, NULL, &st), BSFIT_EINVAL);
+  EXPECT(bsfit_curve_project_many(&c, P, 1, &nan, NULL, 5, NULL, &st), BSFIT_ENONFINITE);
+  EXPECT(bsfit_curve_sample(&c, 1, out, NULL, &st), BSFIT_EINVAL);
+  EXPECT(bsfit_curve_sample(&empty, 3, out, NULL, &st), BSFIT_EINVAL);
   /* a discontinuous curve (interior knot of multiplicity p+1) cannot be elevated */
   {
     double U[] = {0, 0, 0, 0.5, 0.5, 0.5, 1, 1, 1}, Q[12] = {0};
@@ -609,7 +609,7 @@ static void test_project_many_batch_finds_feet(void **state) {
     }
     {
       double got[40];
-      assert_int_equal(bsfit_curve_project_many(&c, Q, 40, u, got, 30, NULL), BSFIT_OK);
+      assert_int_equal(bsfit_curve_project_many(&c, Q, 40, u, got, 30, NULL, NULL), BSFIT_OK);
       for (i = 0; i < 40; i++) {
         assert_float_equal(u[i], u0[i], 1e-8 * (b - a));
         assert_float_equal(got[i], dd[i], 1e-11);
@@ -635,10 +635,10 @@ static void test_closest_beside_a_corner(void **state) {
   assert_int_equal(bsfit_curve_new(&c, 3, 2, 7, U, P, NULL, 0, NULL, NULL), BSFIT_OK);
   for (i = 0; i < 4; i++) {
     double ui, di;
-    assert_int_equal(bsfit_curve_closest(&c, Q + 2 * i, &ui, &di, NULL), BSFIT_OK);
+    assert_int_equal(bsfit_curve_closest(&c, Q + 2 * i, &ui, &di, NULL, NULL), BSFIT_OK);
     assert_float_equal(di, want[i], 1e-12);
   }
-  assert_int_equal(bsfit_curve_closest_many(&c, Q, 4, u, d, NULL), BSFIT_OK);
+  assert_int_equal(bsfit_curve_closest_many(&c, Q, 4, u, d, NULL, NULL), BSFIT_OK);
   for (i = 0; i < 4; i++) assert_float_equal(d[i], want[i], 1e-12);
   bsfit_curve_free(&c);
 }
@@ -657,14 +657,14 @@ static void test_closest_many_equals_closest(void **state) {
       int dim = 2 + rational;
       if (!random_curve(&r, &c, 3, n, dim, kind, rational)) continue;
       for (i = 0; i < 60 * (size_t)dim; i++) pts[i] = rng_range(&r, -1.5, 1.5);
-      assert_int_equal(bsfit_curve_closest_many(&c, pts, 60, u, d, NULL), BSFIT_OK);
+      assert_int_equal(bsfit_curve_closest_many(&c, pts, 60, u, d, NULL, NULL), BSFIT_OK);
       for (i = 0; i < 60; i++) {
-        assert_int_equal(bsfit_curve_closest(&c, pts + i * (size_t)dim, &ui, &di, NULL), BSFIT_OK);
+        assert_int_equal(bsfit_curve_closest(&c, pts + i * (size_t)dim, &ui, &di, NULL, NULL), BSFIT_OK);
         assert_float_equal(d[i], di, 1e-12);
       }
       pts[1] = NAN;
-      assert_int_equal(bsfit_curve_closest_many(&c, pts, 60, u, d, NULL), BSFIT_ENONFINITE);
-      assert_int_equal(bsfit_curve_closest_many(&c, NULL, 60, u, d, NULL), BSFIT_EINVAL);
+      assert_int_equal(bsfit_curve_closest_many(&c, pts, 60, u, d, NULL, NULL), BSFIT_ENONFINITE);
+      assert_int_equal(bsfit_curve_closest_many(&c, NULL, 60, u, d, NULL, NULL), BSFIT_EINVAL);
       bsfit_curve_free(&c);
     }
 }

@@ -139,7 +139,7 @@ static void test_circle_closest(void **state) {
   make_full_circle(&c);
   for (i = 0; i < 24; i++) {
     double th = 0.1 + 0.26 * i, Q[2] = {3 * cos(th), 3 * sin(th)}, u, dist, x[2];
-    assert_int_equal(bsfit_curve_closest(&c, Q, &u, &dist, NULL), BSFIT_OK);
+    assert_int_equal(bsfit_curve_closest(&c, Q, &u, &dist, NULL, NULL), BSFIT_OK);
     assert_float_equal(dist, 2.0, 1e-12);
     bsfit_curve_eval(&c, u, x, NULL);
     assert_float_equal(x[0], cos(th), 1e-12);

@@ -75,3 +75,51 @@ T.test("numerical outcomes return the fail triple", function()
   T.fails("EIO", bs.points.read, "/nonexistent/dir/x.csv")
   T.fails("EFORMAT", bs.curve.from_json, "[1, 2")
 end)
+
+-- issue 13 (core): no wrong answer with success
+T.test("exact filter: windows below the resolution are refused, never garbage", function()
+  local C = bs.curve.new{degree = 3, knots = {0, 0, 0, 0, 0.25, 0.5, 0.75, 1, 1, 1, 1},
+                         control_points = {{0, 0}, {1, 2}, {2, 5}, {3, 1}, {4, 0}, {5, 3}, {1, 1}}}
+  for _, d in ipairs{1e-15, 1e-12, 1e-9} do
+    T.raises({match = "below the exact filter's resolution"}, function() bs.filter.box(C, {delta = d}) end)
+  end
+  local F = bs.filter.box(C, {delta = 1e-6})
+  for i = 1, 9 do -- a window that narrow leaves the curve as it was, to its curvature * 1e-12
+    local x0, y0 = C:eval(i / 10)
+    local x1, y1 = F:eval(i / 10)
+    T.near(x1, x0, 1e-8); T.near(y1, y0, 1e-8)
+  end
+end)
+
+T.test("closed curves with a knot of multiplicity degree + 1 are refused", function()
+  T.raises({match = "multiplicity 2 > degree 1"}, function()
+    bs.curve.new{degree = 1, periodic = true, knots = {0, 1, 1}, control_points = {{0, 0}, {1, 0}}}
+  end)
+end)
+
+T.test("chord parameters of points 1e-300 apart are finite", function()
+  local u = bs.params(bs.points.new{{1e-300, 0}, {0, 0}, {0, 0}}, "chord")
+  T.eq(u:get(1), 0); T.eq(u:get(2), 1); T.eq(u:get(3), 1)
+  u = bs.params(bs.points.new{{1e-300, 0}, {0, 0}, {1e-300, 1e-300}}, "centripetal")
+  T.eq(u:get(1), 0); T.ok(u:get(2) > 0 and u:get(2) < 1); T.eq(u:get(3), 1)
+end)
+
+T.test("coordinates, weights and tangents beyond the documented range", function()
+  T.raises({match = "^bad argument #1 to '[%w.]*params' %(point 2 has a coordinate 1e%+200 beyond 1e100%)$"},
+           function() bs.params(bs.points.new{{0, 0}, {1e200, 0}, {0, 1}}, "chord") end)
+  T.raises({match = "weight 1 is 1e%-310 %(must be in %[1e%-100, 1e100%]%)"}, function()
+    bs.curve.new{degree = 2, knots = {0, 0, 0, 1, 1, 1}, weights = {1, 1e-310, 1},
+                 control_points = {{0, 0}, {1, 0}, {0, 1}}}
+  end)
+  T.raises({match = "beyond 1e100"}, function()
+    bs.curve.new{degree = 2, knots = {0, 0, 0, 1, 1, 1}, control_points = {{0, 0}, {1e300, 0}, {0, 1}}}
+  end)
+  local R = bs.curve.new{degree = 1, knots = {0, 0, 2e-99, 1, 1}, control_points = {{0, 0}, {1, 0}, {0, 1}}}
+  T.raises({match = "^reverse: the result would be invalid"}, function() R:reverse() end)
+end)
+
+T.test("the moving average of a minimal closed curve is refused", function()
+  local P = bs.curve.new{degree = 2, periodic = true, control_points = {{0, 0}, {1, 0}, {0, 1}}}
+  T.raises({match = "needs 4 distinct control points; this one has 3"},
+           function() bs.filter.box(P, 2) end)
+end)
