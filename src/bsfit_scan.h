@@ -203,6 +203,7 @@ typedef struct bsfit_order_result {
   size_t dropped;        /**< points in parts smaller than min_points */
   bsfit_order_method method; /**< ANGLE or GRAPH: what was used */
   int star;              /**< whether the points passed the star-shape test */
+  size_t capacity;       /**< m, the size the arrays were allocated for */
   bsfit_allocator alloc;
 } bsfit_order_result;
 
