@@ -228,4 +228,21 @@ BSFIT_API bsfit_err bsfit_order(const double *xy, size_t m, const bsfit_order_op
 
 /* }==================================================================== */
 
+/* {====================================================================
+** Writing the sections' curves
+** ===================================================================== */
+
+/** Formats n valid curves (dim 1..3) as one IGES 5.3 file with one entity 126 per curve,
+** in order (DE 1, 3, 5, ...), each as bsfit_curve_to_iges writes it alone.
+** @param[out] out *len+1 bytes allocated with a (the caller frees them with it).
+** @return BSFIT_OK, BSFIT_EINVAL (no curves, a NULL curve), bsfit_curve_to_iges's codes. */
+BSFIT_API bsfit_err bsfit_curves_to_iges(const bsfit_curve *const *c, size_t n, char **out,
+                                         size_t *len, const bsfit_allocator *a, bsfit_status *st);
+
+/** Writes bsfit_curves_to_iges's text to path atomically. */
+BSFIT_API bsfit_err bsfit_curves_write_iges(const bsfit_curve *const *c, size_t n,
+                                            const char *path, bsfit_status *st);
+
+/* }==================================================================== */
+
 #endif

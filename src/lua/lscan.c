@@ -561,6 +561,37 @@ static int scan_order(lua_State *L) {
 /* }==================================================================== */
 
 /* {====================================================================
+** Writing the curves of the sections
+** ===================================================================== */
+
+/* bs.scan.write_iges(path, {C1, C2, ...}) --> true, or nil, msg, code (file errors) */
+static int scan_write_iges(lua_State *L) {
+  const char *path = luaL_checkstring(L, 1);
+  size_t n, i;
+  const bsfit_curve **cs;
+  bsfit_status st;
+  bsfit_err e;
+  luaL_checktype(L, 2, LUA_TTABLE);
+  n = (size_t)luaL_len(L, 2);
+  luaL_argcheck(L, n >= 1, 2, "no curves");
+  luaL_argcheck(L, n <= SIZE_MAX / sizeof *cs, 2, "too many curves");
+  cs = (const bsfit_curve **)lua_newuserdatauv(L, n * sizeof *cs, 0);
+  for (i = 0; i < n; i++) {
+    lua_geti(L, 2, (lua_Integer)i + 1);
+    cs[i] = bsfit__lua_checkcurve(L, lua_gettop(L)); /* the table keeps it alive */
+    lua_pop(L, 1);
+  }
+  e = bsfit_curves_write_iges(cs, n, path, &st);
+  if (e == BSFIT_OK) {
+    lua_pushboolean(L, 1);
+    return 1;
+  }
+  return bsfit__lua_result(L, e, &st, 0, 2);
+}
+
+/* }==================================================================== */
+
+/* {====================================================================
 ** Open
 ** ===================================================================== */
 
@@ -571,7 +602,7 @@ static const luaL_Reg tri_metameth[] = {
 static const luaL_Reg scan_funcs[] = {
   {"read", scan_read},       {"triangles", scan_triangles}, {"extent", scan_extent},
   {"positions", scan_positions}, {"slice", scan_slice},   {"reduce", scan_reduce},
-  {"order", scan_order},     {NULL, NULL}};
+  {"order", scan_order},     {"write_iges", scan_write_iges}, {NULL, NULL}};
 
 /* Builds the metatables and sets bs.scan in the module table on the stack top. */
 void bsfit__lua_lib_scan(lua_State *L) {
