@@ -13,6 +13,7 @@
 local bs = require "bsfit"
 local report = require "bsfit.report"
 local svg = require "bsfit.svg"
+local section_output = require "bsfit.section_output"
 
 local M = {}
 
@@ -198,81 +199,10 @@ end
 -- One section
 -- =======================================================================
 
-local strategies = {}
-
--- The strategy module: a built-in name or a FILE.lua returning the module.
-local function load_strategy(s)
-  if strategies[s] then return strategies[s] end
-  local mod
-  if s:find("/") or s:match("%.lua$") then
-    local chunk, err = loadfile(s, "t")
-    if not chunk then error("strategy " .. err, 0) end
-    mod = chunk()
-  else
-    local ok, m = pcall(require, "bsfit.strategy." .. s)
-    if not ok then error(("unknown strategy '%s' (auto, carvalho, periodic or FILE.lua)"):format(s), 0) end
-    mod = m
-  end
-  if type(mod) ~= "table" or type(mod.run) ~= "function" then
-    error("strategy " .. s .. " does not return a table with a run function", 0)
-  end
-  strategies[s] = mod
-  return mod
-end
-
--- Curve samples as Points: C:sample(k) when bound, else evaluation at k params.
-local function samples(C, k)
-  if C.sample then return C:sample(k) end
-  local a, b = C:domain()
-  local n = C:is_periodic() and k or k - 1
-  local u = {}
-  for i = 0, k - 1 do u[i + 1] = a + (b - a) * i / n end
-  return C:eval_many(bs.vector.new(u))
-end
-
-local function points_csv(S)
-  local dim, out = S:dim(), {}
-  out[1] = dim == 3 and "x,y,z" or "x,y"
-  for i = 1, #S do
-    local t = { S:get(i) }
-    for k = 1, #t do t[k] = report.num(t[k]) end
-    out[i + 1] = table.concat(t, ",")
-  end
-  return table.concat(out, "\n") .. "\n"
-end
-
-local function control_table(C)
-  local ctrl = C:control_points()
-  if type(ctrl) ~= "table" then ctrl = ctrl:totable() end
-  local N = C:distinct()
-  local t = {}
-  for i = 1, N do t[i] = ctrl[i] end
-  return t
-end
-
--- Writes the requested files of a fitted section.
-local function write_outputs(spec, P, C, rep, S)
-  local base = spec.outdir .. "/" .. spec.name
-  local f = spec.formats
-  if f.json then report.must_write(base .. ".json", C:to_json()) end
-  if f.iges then
-    local ok, err = C:write(base .. ".iges")
-    if not ok then error("cannot write " .. base .. ".iges: " .. tostring(err), 0) end
-  end
-  if f.csv then report.must_write(base .. ".csv", points_csv(S)) end
-  if f.svg then
-    local markers = {}
-    local sx, sy = P:get(rep.start_index or 1)
-    markers[1] = { sx, sy, "start" }
-    if rep.max_index then
-      local wx, wy = P:get(rep.max_index)
-      markers[2] = { wx, wy, ("max %.3g"):format(rep.max) }
-    end
-    report.must_write(base .. ".svg", svg.section {
-      points = P, samples = S, control = control_table(C), closed = C:is_periodic(),
-      markers = markers, title = spec.name })
-  end
-end
+-- loading strategies, curve samples and a section's files: shared with `bsfit cloud`
+local load_strategy = section_output.load_strategy
+local samples = section_output.samples
+local write_outputs = section_output.write_outputs
 
 -- The strategy options a section's spec asks for.
 local function strategy_opts(spec, w)
