@@ -104,7 +104,7 @@ static int star_order(const bsfit__ordwork *w, bsfit_order_result *r, angidx *ai
   if (m < 3) return 0;
   for (i = 0; i < m; i++) {
     size_t a = r->index[i], b = r->index[(i + 1) % m];
-    double s = w->spacing[a] > w->spacing[b] ? w->spacing[a] : w->spacing[b];
+    double s = bsfit__pair_spacing(w, a, b);
     if (bsfit__dist(w->xy, a, b) > w->gap * s) return 0;
   }
   return 1;
@@ -187,28 +187,53 @@ static bsfit_err alloc_all(bsfit__ordwork *w, bsfit_order_result *r, size_t m, b
   return BSFIT_OK;
 }
 
+/* Length of the closed tour idx[0..n-1]. */
+static double tour_length(const double *xy, const size_t *idx, size_t n) {
+  double L = 0;
+  size_t i;
+  for (i = 0; i < n; i++) L += bsfit__dist(xy, idx[i], idx[(i + 1) % n]);
+  return L;
+}
+
+/* The angular order as the result: one closed loop. */
+static void as_angle(bsfit_order_result *r, const size_t *order, size_t m) {
+  memcpy(r->index, order, m * sizeof(size_t));
+  r->method = BSFIT_ORDER_ANGLE;
+  r->nloops = 1;
+  r->start[0] = 0;
+  r->start[1] = m;
+  r->closed[0] = 1;
+  r->dropped = 0;
+}
+
+/* Short steps do not make a section star-shaped: points of two walls at one angle (a
+** C, sampled coarsely) interleave with short steps. So the angular order is kept only
+** when the graph tour is not shorter (on a star-shaped section they agree). */
 static bsfit_err run(bsfit__ordwork *w, const bsfit_order_opts *o, bsfit_order_result *r,
                      bsfit_status *st) {
   angidx *ai;
+  size_t *order, m = w->m;
   bsfit_err e = neighbours(w, st);
   if (e != BSFIT_OK) return e;
-  ai = bsfit__alloc(w->a, w->m * sizeof *ai);
+  ai = bsfit__alloc(w->a, m * (sizeof *ai + sizeof(size_t)));
   if (ai == NULL) return bsfit__fail(st, BSFIT_ENOMEM, "out of memory (ordering)");
+  order = (size_t *)(void *)(ai + m);
   r->star = star_order(w, r, ai);
-  bsfit__free(w->a, ai, w->m * sizeof *ai);
+  memcpy(order, r->index, m * sizeof(size_t));
   if (o->method == BSFIT_ORDER_ANGLE && !r->star)
-    return bsfit__fail(st, BSFIT_EINVAL, "the points are not star-shaped about their centroid "
-                                         "(an angular order would jump): use the graph method");
-  if (r->star && o->method != BSFIT_ORDER_GRAPH && w->m >= w->min_points) {
-    r->method = BSFIT_ORDER_ANGLE;
-    r->nloops = 1;
-    r->start[0] = 0;
-    r->start[1] = w->m;
-    r->closed[0] = 1;
-    return BSFIT_OK;
+    e = bsfit__fail(st, BSFIT_EINVAL, "the points are not star-shaped about their centroid "
+                                      "(an angular order would jump): use the graph method");
+  else if (o->method == BSFIT_ORDER_ANGLE || (r->star && m < w->min_points))
+    as_angle(r, order, m);
+  else {
+    e = bsfit__order_graph(w, r, st);
+    if (e == BSFIT_OK && r->star && o->method == BSFIT_ORDER_AUTO &&
+        !(r->nloops == 1 && r->closed[0] && r->dropped == 0 &&
+          tour_length(w->xy, r->index, m) < (1 - 1e-9) * tour_length(w->xy, order, m)))
+      as_angle(r, order, m);
   }
-  r->method = BSFIT_ORDER_GRAPH;
-  return bsfit__order_graph(w, r, st);
+  bsfit__free(w->a, ai, m * (sizeof *ai + sizeof(size_t)));
+  return e;
 }
 
 bsfit_err bsfit_order(const double *xy, size_t m, const bsfit_order_opts *o,

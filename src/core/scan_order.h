@@ -28,6 +28,13 @@ static inline double bsfit__dist(const double *xy, size_t i, size_t j) {
   return sqrt(dx * dx + dy * dy);
 }
 
+/* The spacing a step from i to j is judged against: the geometric mean of the two local
+** spacings, so a gradual change of density passes while a lone outlier (whose own
+** spacing is the distance to the section) cannot bridge to the section. */
+static inline double bsfit__pair_spacing(const bsfit__ordwork *w, size_t i, size_t j) {
+  return sqrt(w->spacing[i] * w->spacing[j]);
+}
+
 /* The graph method: fills r (arrays allocated by the caller for m points). */
 bsfit_err bsfit__order_graph(const bsfit__ordwork *w, bsfit_order_result *r, bsfit_status *st);
 

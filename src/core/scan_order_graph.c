@@ -62,10 +62,8 @@ static bsfit_err spanning_forest(const bsfit__ordwork *w, forest *f, bsfit_statu
   for (i = 0; i < m; i++)
     for (q = 0; q < w->k; q++) {
       size_t j = w->nbr[i * w->k + q];
-      double s = w->spacing[i];
       if (j == BSFIT__NONE) break;
-      if (w->spacing[j] > s) s = w->spacing[j];
-      if (w->nd[i * w->k + q] > w->gap * s) continue; /* a gap: parts stay apart */
+      if (w->nd[i * w->k + q] > w->gap * bsfit__pair_spacing(w, i, j)) continue; /* a gap */
       E[ne].len = w->nd[i * w->k + q];
       E[ne].i = i < j ? i : j;
       E[ne].j = i < j ? j : i;
@@ -141,19 +139,28 @@ static void insert(const bsfit__ordwork *w, forest *f, size_t p, size_t x) {
   }
 }
 
-/* The tour of the tree holding s, written to out; returns its length. */
-static size_t tour(const bsfit__ordwork *w, forest *f, size_t s, size_t *out) {
+/* Whether points a and b, the ends of a backbone, are near enough to close it. */
+static int closes(const bsfit__ordwork *w, size_t a, size_t b, size_t n) {
+  return n >= 3 && a != b && bsfit__dist(w->xy, a, b) <= w->gap * bsfit__pair_spacing(w, a, b);
+}
+
+/* The tour of the tree holding s, written to out; returns its length. Whether it closes
+** is decided on the backbone's ends, before the side branches are inserted (they could
+** otherwise be placed beyond an end and move it); a closed backbone is linked into a
+** ring, so insertions may fall across its seam. */
+static size_t tour(const bsfit__ordwork *w, forest *f, size_t s, size_t *out, int *closed) {
   size_t a = farthest(w, f, s), b = farthest(w, f, a), v, head = 0, tail = 0, n = 0, q;
-  /* the backbone a .. b from the parents of the second search */
-  for (v = b; v != BSFIT__NONE; v = f->prv[v]) f->queue[tail++] = v;
-  for (q = 0; q < tail; q++) {
-    v = f->queue[q];
-    f->pos[v] = 1; /* in the tour */
-  }
+  for (v = b; v != BSFIT__NONE; v = f->prv[v]) f->queue[tail++] = v; /* b .. a */
+  for (q = 0; q < tail; q++) f->pos[f->queue[q]] = 1; /* in the tour */
   for (q = 0; q < tail; q++) {
     v = f->queue[q];
     f->prv[v] = q > 0 ? f->queue[q - 1] : BSFIT__NONE;
     f->nxt[v] = q + 1 < tail ? f->queue[q + 1] : BSFIT__NONE;
+  }
+  *closed = closes(w, a, b, tail);
+  if (*closed) {
+    f->prv[b] = a;
+    f->nxt[a] = b;
   }
   while (head < tail) { /* breadth first from the backbone: a point's parent is placed */
     size_t p = f->queue[head++];
@@ -164,6 +171,14 @@ static size_t tour(const bsfit__ordwork *w, forest *f, size_t s, size_t *out) {
       insert(w, f, p, x);
       f->queue[tail++] = x;
     }
+  }
+  if (*closed) {
+    v = b;
+    do {
+      out[n++] = v;
+      v = f->nxt[v];
+    } while (v != b);
+    return n;
   }
   for (v = b; f->prv[v] != BSFIT__NONE; v = f->prv[v]) {}
   for (; v != BSFIT__NONE; v = f->nxt[v]) out[n++] = v;
@@ -199,17 +214,6 @@ static bsfit_err forest_alloc(const bsfit__ordwork *w, forest *f, int on) {
   return BSFIT_OK;
 }
 
-/* Whether the tour t[0..n-1] closes: its ends within gap times the local spacing. */
-static int closes(const bsfit__ordwork *w, const size_t *t, size_t n) {
-  size_t a, b;
-  double s;
-  if (n < 3) return 0;
-  a = t[0];
-  b = t[n - 1];
-  s = w->spacing[a] > w->spacing[b] ? w->spacing[a] : w->spacing[b];
-  return bsfit__dist(w->xy, a, b) <= w->gap * s;
-}
-
 /* Every part: its tour, closed or not, improved by 2-opt. */
 static bsfit_err parts(const bsfit__ordwork *w, forest *f, bsfit_order_result *r, bsfit_status *st) {
   size_t i, used = 0, n, q;
@@ -222,12 +226,11 @@ static bsfit_err parts(const bsfit__ordwork *w, forest *f, bsfit_order_result *r
     int closed;
     if (f->pos[i]) continue;
     if (bsfit__interrupted(w->a)) return bsfit__fail(st, BSFIT_EINTR, "ordering interrupted");
-    n = tour(w, f, i, t);
+    n = tour(w, f, i, t, &closed);
     if (n < w->min_points) {
       r->dropped += n;
       continue;
     }
-    closed = closes(w, t, n);
     for (q = 0; q < n; q++) f->nxt[t[q]] = q; /* the list is done with: positions for 2-opt */
     bsfit__two_opt(w, t, n, closed, f->nxt, f->comp, f->comp[i]);
     r->closed[r->nloops] = (unsigned char)closed;

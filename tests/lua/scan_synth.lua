@@ -99,13 +99,14 @@ function M.shapes.wing()
   return swept("wing", naca, function(z) return 1 - 0.03 * z end, 0, 10)
 end
 
--- A rounded box: the superellipse |x/4|^4 + |y/2.5|^4 = 1.
+-- A rounded box: the superellipse |x/4|^4 + |y/2.5|^4 = 1, in polar form (a bounded
+-- speed, so clouds sampled by t have no gaps on the flat sides).
 function M.shapes.box()
   local function sq(t)
     local a = 2 * math.pi * t
     local c, s = math.cos(a), math.sin(a)
-    local function sg(v) return (v >= 0 and 1 or -1) * math.abs(v) ^ 0.5 end
-    return 4 * sg(c), 2.5 * sg(s)
+    local r = 1 / ((c / 4) ^ 4 + (s / 2.5) ^ 4) ^ 0.25
+    return r * c, r * s
   end
   return swept("box", sq, function() return 1 end, 0, 8)
 end
