@@ -252,9 +252,10 @@ function M.write_stl(mesh, path, ascii)
     f:write("solid synth\n")
     for _, t in ipairs(mesh.F) do
       f:write("  facet normal 0 0 0\n    outer loop\n")
-      for k = 1, 3 do
+      for k = 1, 3 do -- the binary file's float32 values, exactly
         local v = V[t[k]]
-        f:write(("      vertex %.9g %.9g %.9g\n"):format(v[1], v[2], v[3]))
+        local x, y, z = string.unpack("<fff", string.pack("<fff", v[1], v[2], v[3]))
+        f:write(("      vertex %.9g %.9g %.9g\n"):format(x, y, z))
       end
       f:write("    endloop\n  endfacet\n")
     end
