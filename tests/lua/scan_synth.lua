@@ -255,7 +255,7 @@ function M.write_stl(mesh, path, ascii)
       for k = 1, 3 do -- the binary file's float32 values, exactly
         local v = V[t[k]]
         local x, y, z = string.unpack("<fff", string.pack("<fff", v[1], v[2], v[3]))
-        f:write(("      vertex %.9g %.9g %.9g\n"):format(x, y, z))
+        f:write(("      vertex %.17g %.17g %.17g\n"):format(x, y, z))
       end
       f:write("    endloop\n  endfacet\n")
     end
