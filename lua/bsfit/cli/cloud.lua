@@ -122,8 +122,6 @@ function M.parse(args)
   return o, input, false, quiet
 end
 
-local function shell_quote(s) return "'" .. s:gsub("'", "'\\''") .. "'" end
-
 function M.main(args)
   local okp, o, input, help, quiet = pcall(M.parse, args or {})
   if not okp then
@@ -134,7 +132,6 @@ function M.main(args)
   if help then io.stdout:write(M.usage); return 0 end
   local okl, lerr = pcall(require("bsfit.section_output").load_strategy, o.strategy or "auto")
   if not okl then warn("%s", tostring(lerr)); return 2 end
-  os.execute("mkdir -p " .. shell_quote(o.outdir))
   local ok, result = pcall(pipeline.run, input, o)
   if not ok then warn("%s", tostring(result):gsub("\n.*", "")); return 2 end
   local failed = 0

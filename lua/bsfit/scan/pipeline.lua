@@ -227,6 +227,9 @@ end
 function M.run(input, opts)
   local ctx = M.context(opts)
   local t0 = clock()
+  if ctx.outdir and os and os.execute then -- the output directory, made when missing
+    os.execute("mkdir -p '" .. ctx.outdir:gsub("'", "'\\''") .. "'")
+  end
   local scan = ctx.read(input, ctx)
   local slices = ctx.slice(scan, ctx)
   local result = process(slices, ctx)
