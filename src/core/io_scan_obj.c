@@ -66,6 +66,7 @@ bsfit_err bsfit__scan_obj(const char *data, size_t len, bsfit__scanbuild *b, bsf
   size_t lines = 0;
   while (e == BSFIT_OK && bsfit__cur_skip(&c)) {
     const char *s = c.s + c.pos;
+    if (b->failed) return bsfit__fail(st, BSFIT_ENOMEM, "%s: out of memory", b->name);
     size_t left = c.len - c.pos;
     if ((++lines & 0xffff) == 0 && bsfit__interrupted(&b->a))
       return bsfit__fail(st, BSFIT_EINTR, "%s: interrupted", b->name);

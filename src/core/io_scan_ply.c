@@ -288,7 +288,8 @@ static bsfit_err read_element(ply *p, const pelem *e, bsfit__scanbuild *b, const
     roles[j] = role_of(e, &e->props[j]);
     if (roles[j] == R_FACE && face < 0) face = j; /* only the first index list counts */
   }
-  if (is_vertex && !bsfit__sb_reserve(b, e->count, 0)) return BSFIT_OK; /* finish reports */
+  if (is_vertex && !bsfit__sb_reserve(b, e->count, 0))
+    return bsfit__fail(p->st, BSFIT_ENOMEM, "%s: out of memory (%zu vertices)", p->name, e->count);
   for (i = 0; i < e->count; i++) {
     if ((i & 0xffff) == 0 && bsfit__interrupted(a))
       return bsfit__fail(p->st, BSFIT_EINTR, "%s: interrupted", p->name);
