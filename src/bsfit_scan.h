@@ -90,8 +90,8 @@ BSFIT_API bsfit_err bsfit_plane_frame(const double dir[3], double position, bsfi
 
 /** The range [*lo, *hi] of x.n over n points (dir normalised). @return BSFIT_OK,
 ** BSFIT_EINVAL (no points, dir zero), BSFIT_ENONFINITE (a coordinate, named 1-based). */
-BSFIT_API bsfit_err bsfit_scan_extent(const double *xyz, size_t n, const double dir[3],
-                                      double *lo, double *hi, bsfit_status *st);
+BSFIT_API bsfit_err bsfit_scan_extent(const double *xyz, size_t n, const double dir[3], double *lo,
+                                      double *hi, bsfit_status *st);
 
 /** The sections of a slicing: for slice i (planes[i]), parts first_part[i] ..
 ** first_part[i+1]-1; part j holds the 2D points uv[2*part_start[j]] ..
@@ -100,11 +100,11 @@ BSFIT_API bsfit_err bsfit_scan_extent(const double *xyz, size_t n, const double 
 ** cloud's slice has exactly one part, the slab's points (closed[j] = 0). */
 typedef struct bsfit_sections {
   size_t nslices, nparts, npoints;
-  bsfit_plane *planes;     /**< nslices */
-  size_t *first_part;      /**< nslices + 1 */
-  size_t *part_start;      /**< nparts + 1 */
-  unsigned char *closed;   /**< nparts */
-  double *uv;              /**< npoints * 2 */
+  bsfit_plane *planes;   /**< nslices */
+  size_t *first_part;    /**< nslices + 1 */
+  size_t *part_start;    /**< nparts + 1 */
+  unsigned char *closed; /**< nparts */
+  double *uv;            /**< npoints * 2 */
   bsfit_allocator alloc;
 } bsfit_sections;
 
@@ -165,10 +165,9 @@ BSFIT_API bsfit_err bsfit_reduce_grid(const double *xy, size_t m, const double *
 ** @param[out] cell_used the cell size chosen.
 ** @return bsfit_reduce_grid's codes; BSFIT_EINVAL (target 0); BSFIT_EDEGENERATE (all the
 **         points coincide). A target >= m returns the points unchanged (weights 1 or w). */
-BSFIT_API bsfit_err bsfit_reduce_target(const double *xy, size_t m, const double *w,
-                                        size_t target, double *cell_used, double *out_xy,
-                                        double *out_w, size_t *out_m,
-                                        const bsfit_allocator *a, bsfit_status *st);
+BSFIT_API bsfit_err bsfit_reduce_target(const double *xy, size_t m, const double *w, size_t target,
+                                        double *cell_used, double *out_xy, double *out_w,
+                                        size_t *out_m, const bsfit_allocator *a, bsfit_status *st);
 
 /* }==================================================================== */
 
@@ -178,16 +177,19 @@ BSFIT_API bsfit_err bsfit_reduce_target(const double *xy, size_t m, const double
 
 /** How bsfit_order orders. */
 typedef enum bsfit_order_method {
-  BSFIT_ORDER_AUTO = 0, /**< angle when the points are star-shaped about their centroid, else graph */
-  BSFIT_ORDER_ANGLE,    /**< angle about the centroid (one closed loop; refused when not star-shaped) */
-  BSFIT_ORDER_GRAPH     /**< k-nearest-neighbour graph, minimum spanning forest, 2-opt */
+  /** angle when the points pass the star test and the graph tour is not shorter, else graph */
+  BSFIT_ORDER_AUTO = 0,
+  /** angle about the centroid (one closed loop; refused when not star-shaped) */
+  BSFIT_ORDER_ANGLE,
+  /** k-nearest-neighbour graph, minimum spanning forest, 2-opt */
+  BSFIT_ORDER_GRAPH
 } bsfit_order_method;
 
 /** Settings of bsfit_order (bsfit_order_opts_init gives the defaults). */
 typedef struct bsfit_order_opts {
   bsfit_order_method method;
-  int k;          /**< neighbours per point in the graph (default 8, 2..32) */
-  double gap;     /**< a step longer than gap times the local spacing splits or opens a
+  int k;             /**< neighbours per point in the graph (default 8, 2..32) */
+  double gap;        /**< a step longer than gap times the local spacing splits or opens a
                        loop (default 4) */
   size_t min_points; /**< parts with fewer points are dropped as outliers (default 3) */
 } bsfit_order_opts;
@@ -200,10 +202,10 @@ typedef struct bsfit_order_result {
   size_t *start;         /**< nloops + 1 */
   unsigned char *closed; /**< nloops */
   size_t nloops;
-  size_t dropped;        /**< points in parts smaller than min_points */
+  size_t dropped;            /**< points in parts smaller than min_points */
   bsfit_order_method method; /**< ANGLE or GRAPH: what was used */
-  int star;              /**< whether the points passed the star-shape test */
-  size_t capacity;       /**< m, the size the arrays were allocated for */
+  int star;                  /**< whether the points passed the star-shape test */
+  size_t capacity;           /**< m, the size the arrays were allocated for */
   bsfit_allocator alloc;
 } bsfit_order_result;
 
@@ -211,20 +213,21 @@ BSFIT_API void bsfit_order_opts_init(bsfit_order_opts *o);
 BSFIT_API void bsfit_order_result_init(bsfit_order_result *r);
 BSFIT_API void bsfit_order_result_free(bsfit_order_result *r);
 
-/** Orders m 2D points into loops. Star test: in order of angle about the centroid,
-** every step is at most gap times the larger spacing (distance to the 2nd nearest
-** neighbour) of its two ends. Graph: the minimum spanning forest of the k-nearest
-** neighbour graph, with edges longer than gap times the local spacing cut (each tree is
-** one part); each tree's longest path is the backbone and the other points are inserted
-** next to their tree neighbour where that lengthens the tour least; 2-opt moves over the
-** neighbour lists then remove crossings; a part closes when its ends are within gap times
-** the local spacing. Loops are counter-clockwise unless inside another loop. O(m k log m).
+/** Orders m 2D points into loops. The local spacing of a point is its distance to its 2nd
+** nearest neighbour (floored at a quarter of the median); a step from a to b is judged
+** against gap * sqrt(spacing(a) spacing(b)), so a lone outlier cannot bridge to the section.
+** Star test: every step of the order by angle about the centroid is short. Graph: the
+** minimum spanning forest of the k-nearest-neighbour graph without its long edges (each tree
+** is one part); each tree's longest path is the backbone, closed when its ends are near; the
+** other points are inserted next to their tree neighbour where that lengthens the tour least;
+** 2-opt moves over the neighbour lists then remove crossings. AUTO keeps the angular order
+** only when the graph tour is not shorter. Loops are counter-clockwise unless inside another
+** loop (then clockwise). O(m k log m). r must have been initialised (bsfit_order_result_init).
 ** @return BSFIT_OK; BSFIT_EINVAL (m 0, bad options, ANGLE asked for points that are not
 **         star-shaped); BSFIT_ENONFINITE; BSFIT_ETOOFEW (no part of min_points points);
 **         BSFIT_ENOMEM; BSFIT_EINTR. */
 BSFIT_API bsfit_err bsfit_order(const double *xy, size_t m, const bsfit_order_opts *o,
-                                bsfit_order_result *r, const bsfit_allocator *a,
-                                bsfit_status *st);
+                                bsfit_order_result *r, const bsfit_allocator *a, bsfit_status *st);
 
 /* }==================================================================== */
 
@@ -240,8 +243,8 @@ BSFIT_API bsfit_err bsfit_curves_to_iges(const bsfit_curve *const *c, size_t n, 
                                          size_t *len, const bsfit_allocator *a, bsfit_status *st);
 
 /** Writes bsfit_curves_to_iges's text to path atomically. */
-BSFIT_API bsfit_err bsfit_curves_write_iges(const bsfit_curve *const *c, size_t n,
-                                            const char *path, bsfit_status *st);
+BSFIT_API bsfit_err bsfit_curves_write_iges(const bsfit_curve *const *c, size_t n, const char *path,
+                                            bsfit_status *st);
 
 /* }==================================================================== */
 

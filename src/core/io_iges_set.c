@@ -64,11 +64,13 @@ static bsfit_err merge(char **texts, size_t *lens, size_t n, size_t head, char *
   bsfit__buf_init(&d, a);
   bsfit__buf_init(&p, a);
   for (i = 0; i + REC <= lens[head]; i += REC)
-    if (texts[head][i + 72] == 'S' || texts[head][i + 72] == 'G') bsfit__buf_putn(&b, texts[head] + i, REC);
+    if (texts[head][i + 72] == 'S' || texts[head][i + 72] == 'G')
+      bsfit__buf_putn(&b, texts[head] + i, REC);
   ns = count_section(texts[head], lens[head], 'S');
   ng = count_section(texts[head], lens[head], 'G');
   for (j = 0; j < n; j++) entity_records(texts[j], lens[j], j, &pline, &d, &p);
-  if (d.failed || p.failed) b.failed = 1;
+  if (d.failed || p.failed)
+    b.failed = 1;
   else {
     bsfit__buf_putn(&b, d.data, d.len);
     bsfit__buf_putn(&b, p.data, p.len);
@@ -97,8 +99,10 @@ bsfit_err bsfit_curves_to_iges(const bsfit_curve *const *c, size_t n, char **out
   memset(texts, 0, n * sizeof(char *));
   memset(lens, 0, n * sizeof(size_t));
   for (j = 0; j < n && e == BSFIT_OK; j++) {
-    if (c[j] == NULL) e = bsfit__fail(st, BSFIT_EINVAL, "curve %zu is missing", j + 1);
-    else e = bsfit_curve_to_iges(c[j], &texts[j], &lens[j], a, st);
+    if (c[j] == NULL)
+      e = bsfit__fail(st, BSFIT_EINVAL, "curve %zu is missing", j + 1);
+    else
+      e = bsfit_curve_to_iges(c[j], &texts[j], &lens[j], a, st);
     if (e == BSFIT_OK && curve_size(c[j]) > curve_size(c[head])) head = j;
   }
   if (e == BSFIT_OK) e = merge(texts, lens, n, head, out, len, a, st);

@@ -115,7 +115,8 @@ bsfit_err bsfit__sb_finish(bsfit__scanbuild *b, bsfit_scan *s, bsfit_status *st)
   if (q != NULL) b->xyz = q, b->capv = b->nv;
   q = shrink(b, b->tri, b->capt, b->nt, 3 * sizeof(uint32_t));
   if (q != NULL || b->nt == 0) b->tri = q, b->capt = b->nt;
-  if (b->capv != b->nv || b->capt != b->nt) return bsfit__fail(st, BSFIT_ENOMEM, "%s: out of memory", b->name);
+  if (b->capv != b->nv || b->capt != b->nt)
+    return bsfit__fail(st, BSFIT_ENOMEM, "%s: out of memory", b->name);
   s->xyz = b->xyz;
   s->nv = b->nv;
   s->tri = b->tri;
@@ -136,8 +137,10 @@ bsfit_err bsfit__sb_finish(bsfit__scanbuild *b, bsfit_scan *s, bsfit_status *st)
 int bsfit__cur_skip(bsfit__cursor *c) {
   while (c->pos < c->len) {
     char ch = c->s[c->pos];
-    if (ch == '\n') c->line++;
-    else if (ch != ' ' && ch != '\t' && ch != '\r' && ch != '\f' && ch != '\v') return 1;
+    if (ch == '\n')
+      c->line++;
+    else if (ch != ' ' && ch != '\t' && ch != '\r' && ch != '\f' && ch != '\v')
+      return 1;
     c->pos++;
   }
   return 0;
@@ -215,11 +218,20 @@ bsfit_err bsfit_scan_parse(const char *data, size_t len, bsfit_scan_format fmt, 
     return bsfit__fail(st, BSFIT_EINVAL, "bsfit_scan_parse: NULL argument");
   bsfit__sb_init(&b, name, a);
   switch (fmt) {
-  case BSFIT_SCAN_PLY: e = bsfit__scan_ply(data, len, &b, st); break;
-  case BSFIT_SCAN_STL: e = bsfit__scan_stl(data, len, &b, st); break;
-  case BSFIT_SCAN_OBJ: e = bsfit__scan_obj(data, len, &b, st); break;
-  case BSFIT_SCAN_XYZ: e = parse_xyz(data, len, &b, st); break;
-  default: e = bsfit__fail(st, BSFIT_EINVAL, "%s: unknown scan format %d", b.name, (int)fmt);
+    case BSFIT_SCAN_PLY:
+      e = bsfit__scan_ply(data, len, &b, st);
+      break;
+    case BSFIT_SCAN_STL:
+      e = bsfit__scan_stl(data, len, &b, st);
+      break;
+    case BSFIT_SCAN_OBJ:
+      e = bsfit__scan_obj(data, len, &b, st);
+      break;
+    case BSFIT_SCAN_XYZ:
+      e = parse_xyz(data, len, &b, st);
+      break;
+    default:
+      e = bsfit__fail(st, BSFIT_EINVAL, "%s: unknown scan format %d", b.name, (int)fmt);
   }
   if (e == BSFIT_OK) e = bsfit__sb_finish(&b, s, st);
   bsfit__sb_free(&b);
@@ -228,14 +240,17 @@ bsfit_err bsfit_scan_parse(const char *data, size_t len, bsfit_scan_format fmt, 
 
 /* The format named by a file's extension, or AUTO when it names none. */
 static bsfit_scan_format format_of(const char *path) {
-  static const struct { const char *ext; bsfit_scan_format f; } map[] = {
-    {"ply", BSFIT_SCAN_PLY}, {"stl", BSFIT_SCAN_STL}, {"obj", BSFIT_SCAN_OBJ},
-    {"xyz", BSFIT_SCAN_XYZ}, {"csv", BSFIT_SCAN_XYZ}, {"txt", BSFIT_SCAN_XYZ},
-    {"pts", BSFIT_SCAN_XYZ}, {"asc", BSFIT_SCAN_XYZ}};
+  static const struct {
+    const char *ext;
+    bsfit_scan_format f;
+  } map[] = {{"ply", BSFIT_SCAN_PLY}, {"stl", BSFIT_SCAN_STL}, {"obj", BSFIT_SCAN_OBJ},
+             {"xyz", BSFIT_SCAN_XYZ}, {"csv", BSFIT_SCAN_XYZ}, {"txt", BSFIT_SCAN_XYZ},
+             {"pts", BSFIT_SCAN_XYZ}, {"asc", BSFIT_SCAN_XYZ}};
   const char *dot = strrchr(path, '.');
   size_t i, k;
   char ext[8];
-  if (dot == NULL || strchr(dot, '/') != NULL || strlen(dot + 1) >= sizeof ext) return BSFIT_SCAN_AUTO;
+  if (dot == NULL || strchr(dot, '/') != NULL || strlen(dot + 1) >= sizeof ext)
+    return BSFIT_SCAN_AUTO;
   for (k = 0; dot[1 + k] != '\0'; k++) ext[k] = (char)tolower((unsigned char)dot[1 + k]);
   ext[k] = '\0';
   for (i = 0; i < sizeof map / sizeof map[0]; i++)
@@ -247,7 +262,8 @@ bsfit_err bsfit_scan_read(const char *path, bsfit_scan_format fmt, bsfit_scan *s
                           const bsfit_allocator *a, bsfit_status *st) {
   bsfit__buf buf;
   bsfit_err e;
-  if (path == NULL || s == NULL) return bsfit__fail(st, BSFIT_EINVAL, "bsfit_scan_read: NULL argument");
+  if (path == NULL || s == NULL)
+    return bsfit__fail(st, BSFIT_EINVAL, "bsfit_scan_read: NULL argument");
   if (fmt == BSFIT_SCAN_AUTO) fmt = format_of(path);
   if (fmt == BSFIT_SCAN_AUTO)
     return bsfit__fail(st, BSFIT_EINVAL,

@@ -36,8 +36,9 @@ static bsfit_err obj_corner(const char *tok, const bsfit__cursor *c, bsfit__scan
     return obj_fail(c, b, "a face corner is not a vertex index", st);
   if (i < 0) i += n + 1; /* -1 is the last vertex read */
   if (i < 1 || i > n) {
-    return bsfit__fail(st, BSFIT_EFORMAT, "%s:%zu: vertex index %s out of range (%lld vertices read)",
-                       b->name, c->line, tok, n);
+    return bsfit__fail(st, BSFIT_EFORMAT,
+                       "%s:%zu: vertex index %s out of range (%lld vertices read)", b->name,
+                       c->line, tok, n);
   }
   *id = (uint32_t)(i - 1);
   return BSFIT_OK;
@@ -80,6 +81,7 @@ bsfit_err bsfit__scan_obj(const char *data, size_t len, bsfit__scanbuild *b, bsf
     }
     if (e == BSFIT_OK) bsfit__cur_next_line(&c);
   }
-  if (e == BSFIT_OK && b->failed) return bsfit__fail(st, BSFIT_ENOMEM, "%s: out of memory", b->name);
+  if (e == BSFIT_OK && b->failed)
+    return bsfit__fail(st, BSFIT_ENOMEM, "%s: out of memory", b->name);
   return e;
 }

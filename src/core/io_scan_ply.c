@@ -43,11 +43,15 @@ typedef struct ply {
   bsfit_status *st;
 } ply;
 
-static const struct { const char *name; ptype t; size_t size; } types[] = {
-  {"char", P_I8, 1},    {"int8", P_I8, 1},     {"uchar", P_U8, 1},    {"uint8", P_U8, 1},
-  {"short", P_I16, 2},  {"int16", P_I16, 2},   {"ushort", P_U16, 2},  {"uint16", P_U16, 2},
-  {"int", P_I32, 4},    {"int32", P_I32, 4},   {"uint", P_U32, 4},    {"uint32", P_U32, 4},
-  {"float", P_F32, 4},  {"float32", P_F32, 4}, {"double", P_F64, 8},  {"float64", P_F64, 8}};
+static const struct {
+  const char *name;
+  ptype t;
+  size_t size;
+} types[] = {
+    {"char", P_I8, 1},   {"int8", P_I8, 1},     {"uchar", P_U8, 1},   {"uint8", P_U8, 1},
+    {"short", P_I16, 2}, {"int16", P_I16, 2},   {"ushort", P_U16, 2}, {"uint16", P_U16, 2},
+    {"int", P_I32, 4},   {"int32", P_I32, 4},   {"uint", P_U32, 4},   {"uint32", P_U32, 4},
+    {"float", P_F32, 4}, {"float32", P_F32, 4}, {"double", P_F64, 8}, {"float64", P_F64, 8}};
 
 static ptype type_of(const char *s) {
   size_t i;
@@ -140,10 +144,14 @@ static bsfit_err header_line(ply *p, char *w[6], int n, int *done) {
   }
   if (strcmp(w[0], "format") == 0) {
     if (n != 3) return header_fail(p, "malformed format line");
-    if (strcmp(w[1], "ascii") == 0) p->format = 0;
-    else if (strcmp(w[1], "binary_little_endian") == 0) p->format = 1;
-    else if (strcmp(w[1], "binary_big_endian") == 0) p->format = 2;
-    else return header_fail(p, "unknown format");
+    if (strcmp(w[1], "ascii") == 0)
+      p->format = 0;
+    else if (strcmp(w[1], "binary_little_endian") == 0)
+      p->format = 1;
+    else if (strcmp(w[1], "binary_big_endian") == 0)
+      p->format = 2;
+    else
+      return header_fail(p, "unknown format");
     return BSFIT_OK;
   }
   if (strcmp(w[0], "element") == 0) return header_element(p, w, n);
@@ -196,25 +204,48 @@ static int role_of(const pelem *e, const pprop *q) {
 static double decode(const ply *p, const unsigned char *b, ptype t) {
   unsigned char v[8];
   size_t k, n = size_of(t);
-  int8_t i8; int16_t i16; uint16_t u16; int32_t i32; uint32_t u32; float f; double d;
+  int8_t i8;
+  int16_t i16;
+  uint16_t u16;
+  int32_t i32;
+  uint32_t u32;
+  float f;
+  double d;
   int swap = (p->format == 2) != (*(const unsigned char *)&(const uint16_t){1} == 0);
   for (k = 0; k < n; k++) v[k] = swap ? b[n - 1 - k] : b[k];
   switch (t) {
-  case P_I8: memcpy(&i8, v, 1); return i8;
-  case P_U8: return v[0];
-  case P_I16: memcpy(&i16, v, 2); return i16;
-  case P_U16: memcpy(&u16, v, 2); return u16;
-  case P_I32: memcpy(&i32, v, 4); return i32;
-  case P_U32: memcpy(&u32, v, 4); return u32;
-  case P_F32: memcpy(&f, v, 4); return f;
-  default: memcpy(&d, v, 8); return d;
+    case P_I8:
+      memcpy(&i8, v, 1);
+      return i8;
+    case P_U8:
+      return v[0];
+    case P_I16:
+      memcpy(&i16, v, 2);
+      return i16;
+    case P_U16:
+      memcpy(&u16, v, 2);
+      return u16;
+    case P_I32:
+      memcpy(&i32, v, 4);
+      return i32;
+    case P_U32:
+      memcpy(&u32, v, 4);
+      return u32;
+    case P_F32:
+      memcpy(&f, v, 4);
+      return f;
+    default:
+      memcpy(&d, v, 8);
+      return d;
   }
 }
 
 /* Where a value is, for messages. */
 static void where(const ply *p, const pelem *e, size_t i, char *buf, size_t cap) {
-  if (p->format == 0) snprintf(buf, cap, "%s:%zu: %s %zu", p->name, p->cur.line, e->name, i + 1);
-  else snprintf(buf, cap, "%s: %s %zu (byte %zu)", p->name, e->name, i + 1, p->cur.pos);
+  if (p->format == 0)
+    snprintf(buf, cap, "%s:%zu: %s %zu", p->name, p->cur.line, e->name, i + 1);
+  else
+    snprintf(buf, cap, "%s: %s %zu (byte %zu)", p->name, e->name, i + 1, p->cur.pos);
 }
 
 /* The next value of type t; 0 with the error set when missing or malformed. */
@@ -266,9 +297,10 @@ static bsfit_err read_face(ply *p, const pelem *e, size_t i, const pprop *q, int
     if (!(x >= 0 && x < (double)p->nvert) || x != floor(x)) {
       char loc[200];
       where(p, e, i, loc, sizeof loc);
-      return bsfit__fail(p->st, BSFIT_EFORMAT,
-                         "%s: vertex index %.17g out of range (0 to %zu, the file has %zu vertices)",
-                         loc, x, p->nvert - 1, p->nvert);
+      return bsfit__fail(
+          p->st, BSFIT_EFORMAT,
+          "%s: vertex index %.17g out of range (0 to %zu, the file has %zu vertices)", loc, x,
+          p->nvert - 1, p->nvert);
     }
     idx[k] = (uint32_t)x;
   }
@@ -279,7 +311,8 @@ static bsfit_err read_face(ply *p, const pelem *e, size_t i, const pprop *q, int
 }
 
 /* Reads (or reads past) every instance of one element. */
-static bsfit_err read_element(ply *p, const pelem *e, bsfit__scanbuild *b, const bsfit_allocator *a) {
+static bsfit_err read_element(ply *p, const pelem *e, bsfit__scanbuild *b,
+                              const bsfit_allocator *a) {
   int roles[MAXPROPS], j, is_vertex = strcmp(e->name, "vertex") == 0, face = -1;
   size_t i;
   double x, xyz[3] = {0, 0, 0};

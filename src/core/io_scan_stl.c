@@ -50,7 +50,9 @@ static bsfit_err vm_init(vmerge *v, bsfit__scanbuild *b, size_t corners, bsfit_s
   return BSFIT_OK;
 }
 
-static void vm_free(vmerge *v) { bsfit__free(&v->b->a, v->slot, (v->mask + 1) * sizeof(uint32_t)); }
+static void vm_free(vmerge *v) {
+  bsfit__free(&v->b->a, v->slot, (v->mask + 1) * sizeof(uint32_t));
+}
 
 /* The id of the vertex at p, added when new; UINT32_MAX when out of room. */
 static uint32_t vm_id(vmerge *v, const double *p) {
@@ -103,13 +105,16 @@ static bsfit_err read_binary(const unsigned char *d, size_t len, bsfit__scanbuil
   bsfit_err e;
   if (len < 84)
     return bsfit__fail(st, BSFIT_EFORMAT,
-                       "%s: truncated binary STL (%zu bytes; the header alone has 84)", b->name, len);
+                       "%s: truncated binary STL (%zu bytes; the header alone has 84)", b->name,
+                       len);
   n = (size_t)d[80] | (size_t)d[81] << 8 | (size_t)d[82] << 16 | (size_t)d[83] << 24;
   if ((len - 84) / 50 != n || (len - 84) % 50 != 0)
     return bsfit__fail(st, BSFIT_EFORMAT,
                        "%s: binary STL of %zu triangles needs %zu bytes, the file has %zu "
-                       "(truncated or not an STL)", b->name, n, 84 + 50 * n, len);
-  if (!bsfit__sb_reserve(b, n / 2 + 3, n)) return bsfit__fail(st, BSFIT_ENOMEM, "%s: out of memory", b->name);
+                       "(truncated or not an STL)",
+                       b->name, n, 84 + 50 * n, len);
+  if (!bsfit__sb_reserve(b, n / 2 + 3, n))
+    return bsfit__fail(st, BSFIT_ENOMEM, "%s: out of memory", b->name);
   e = vm_init(&v, b, 3 * n, st);
   if (e != BSFIT_OK) return e;
   for (i = 0; i < n; i++) {
@@ -174,7 +179,7 @@ static bsfit_err read_ascii(const char *d, size_t len, bsfit__scanbuild *b, bsfi
   size_t f = 0, n;
   vmerge v;
   bsfit_err e;
-  bsfit__cur_next_line(&c); /* "solid name" */
+  bsfit__cur_next_line(&c);              /* "solid name" */
   e = vm_init(&v, b, len / 40 + 16, st); /* an ASCII facet takes well over 40*3 bytes */
   if (e != BSFIT_OK) return e;
   for (;;) {
@@ -216,8 +221,10 @@ static int is_ascii(const char *d, size_t len) {
 
 bsfit_err bsfit__scan_stl(const char *data, size_t len, bsfit__scanbuild *b, bsfit_status *st) {
   bsfit_err e;
-  if (is_ascii(data, len)) e = read_ascii(data, len, b, st);
-  else e = read_binary((const unsigned char *)data, len, b, st);
+  if (is_ascii(data, len))
+    e = read_ascii(data, len, b, st);
+  else
+    e = read_binary((const unsigned char *)data, len, b, st);
   if (e == BSFIT_OK && b->nt == 0)
     return bsfit__fail(st, BSFIT_ETOOFEW, "%s: no triangles", b->name);
   return e;

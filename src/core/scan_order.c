@@ -162,12 +162,15 @@ static void orient(const double *xy, bsfit_order_result *r) {
 static bsfit_err check(const double *xy, size_t m, const bsfit_order_opts *o, bsfit_status *st) {
   size_t i;
   if (xy == NULL || m == 0) return bsfit__fail(st, BSFIT_EINVAL, "no points to order");
-  if (o->k < 2 || o->k > 32) return bsfit__fail(st, BSFIT_EINVAL, "k must be in 2..32, got %d", o->k);
+  if (o->k < 2 || o->k > 32)
+    return bsfit__fail(st, BSFIT_EINVAL, "k must be in 2..32, got %d", o->k);
   if (!(o->gap >= 1) || !isfinite(o->gap))
     return bsfit__fail(st, BSFIT_EINVAL, "gap must be >= 1, got %g", o->gap);
-  if ((unsigned)o->method > BSFIT_ORDER_GRAPH) return bsfit__fail(st, BSFIT_EINVAL, "unknown method");
+  if ((unsigned)o->method > BSFIT_ORDER_GRAPH)
+    return bsfit__fail(st, BSFIT_EINVAL, "unknown method");
   for (i = 0; i < 2 * m; i++)
-    if (!isfinite(xy[i])) return bsfit__fail(st, BSFIT_ENONFINITE, "point %zu is not finite", i / 2 + 1);
+    if (!isfinite(xy[i]))
+      return bsfit__fail(st, BSFIT_ENONFINITE, "point %zu is not finite", i / 2 + 1);
   return BSFIT_OK;
 }
 
@@ -221,8 +224,9 @@ static bsfit_err run(bsfit__ordwork *w, const bsfit_order_opts *o, bsfit_order_r
   r->star = star_order(w, r, ai);
   memcpy(order, r->index, m * sizeof(size_t));
   if (o->method == BSFIT_ORDER_ANGLE && !r->star)
-    e = bsfit__fail(st, BSFIT_EINVAL, "the points are not star-shaped about their centroid "
-                                      "(an angular order would jump): use the graph method");
+    e = bsfit__fail(st, BSFIT_EINVAL,
+                    "the points are not star-shaped about their centroid "
+                    "(an angular order would jump): use the graph method");
   else if (o->method == BSFIT_ORDER_ANGLE || (r->star && m < w->min_points))
     as_angle(r, order, m);
   else {
@@ -236,8 +240,8 @@ static bsfit_err run(bsfit__ordwork *w, const bsfit_order_opts *o, bsfit_order_r
   return e;
 }
 
-bsfit_err bsfit_order(const double *xy, size_t m, const bsfit_order_opts *o,
-                      bsfit_order_result *r, const bsfit_allocator *a, bsfit_status *st) {
+bsfit_err bsfit_order(const double *xy, size_t m, const bsfit_order_opts *o, bsfit_order_result *r,
+                      const bsfit_allocator *a, bsfit_status *st) {
   bsfit_order_opts def;
   bsfit__ordwork w;
   bsfit_err e;

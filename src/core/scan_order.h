@@ -15,9 +15,9 @@
 typedef struct bsfit__ordwork {
   const double *xy;
   size_t m, k;
-  size_t *nbr;      /* m*k neighbour ids, nearest first (BSFIT__NONE past the end) */
-  double *nd;       /* their distances */
-  double *spacing;  /* m: local spacing (2nd neighbour distance, floored) */
+  size_t *nbr;     /* m*k neighbour ids, nearest first (BSFIT__NONE past the end) */
+  double *nd;      /* their distances */
+  double *spacing; /* m: local spacing (2nd neighbour distance, floored) */
   double gap;
   size_t min_points;
   const bsfit_allocator *a;

@@ -44,8 +44,10 @@ static size_t try_edge(const bsfit__ordwork *w, size_t *t, size_t n, int closed,
     lo = i < j ? i : j;
     hi = i < j ? j : i;
     inner = hi - lo; /* t[lo+1 .. hi] */
-    if (closed && n - inner < inner) reverse(t, n, hi + 1, n - inner, pos);
-    else reverse(t, n, lo + 1, inner, pos);
+    if (closed && n - inner < inner)
+      reverse(t, n, hi + 1, n - inner, pos);
+    else
+      reverse(t, n, lo + 1, inner, pos);
     return inner + 1;
   }
   return 0;

@@ -29,11 +29,11 @@ static int cmp_edge(const void *a, const void *b) {
 }
 
 typedef struct forest {
-  size_t *parent;     /* union-find */
-  size_t *tstart;     /* m + 1: tree neighbours of v are tadj[tstart[v] .. tstart[v+1]-1] */
-  size_t *tadj;       /* 2 (m-1) */
-  size_t *comp;       /* m: component id (its root) */
-  size_t *nxt, *prv;  /* the tour being built, as a linked list */
+  size_t *parent;    /* union-find */
+  size_t *tstart;    /* m + 1: tree neighbours of v are tadj[tstart[v] .. tstart[v+1]-1] */
+  size_t *tadj;      /* 2 (m-1) */
+  size_t *comp;      /* m: component id (its root) */
+  size_t *nxt, *prv; /* the tour being built, as a linked list */
   size_t *queue, *pos;
   double *dist;
 } forest;
@@ -124,7 +124,8 @@ static size_t farthest(const bsfit__ordwork *w, forest *f, size_t s) {
 static void insert(const bsfit__ordwork *w, forest *f, size_t p, size_t x) {
   size_t a = f->prv[p], b = f->nxt[p];
   double dpx = bsfit__dist(w->xy, p, x);
-  double before = a == BSFIT__NONE ? dpx : bsfit__dist(w->xy, a, x) + dpx - bsfit__dist(w->xy, a, p);
+  double before =
+      a == BSFIT__NONE ? dpx : bsfit__dist(w->xy, a, x) + dpx - bsfit__dist(w->xy, a, p);
   double after = b == BSFIT__NONE ? dpx : bsfit__dist(w->xy, x, b) + dpx - bsfit__dist(w->xy, p, b);
   if (before < after) {
     f->prv[x] = a;
@@ -151,7 +152,7 @@ static int closes(const bsfit__ordwork *w, size_t a, size_t b, size_t n) {
 static size_t tour(const bsfit__ordwork *w, forest *f, size_t s, size_t *out, int *closed) {
   size_t a = farthest(w, f, s), b = farthest(w, f, a), v, head = 0, tail = 0, n = 0, q;
   for (v = b; v != BSFIT__NONE; v = f->prv[v]) f->queue[tail++] = v; /* b .. a */
-  for (q = 0; q < tail; q++) f->pos[f->queue[q]] = 1; /* in the tour */
+  for (q = 0; q < tail; q++) f->pos[f->queue[q]] = 1;                /* in the tour */
   for (q = 0; q < tail; q++) {
     v = f->queue[q];
     f->prv[v] = q > 0 ? f->queue[q - 1] : BSFIT__NONE;
@@ -180,7 +181,8 @@ static size_t tour(const bsfit__ordwork *w, forest *f, size_t s, size_t *out, in
     } while (v != b);
     return n;
   }
-  for (v = b; f->prv[v] != BSFIT__NONE; v = f->prv[v]) {}
+  for (v = b; f->prv[v] != BSFIT__NONE; v = f->prv[v]) {
+  }
   for (; v != BSFIT__NONE; v = f->nxt[v]) out[n++] = v;
   return n;
 }
@@ -199,8 +201,10 @@ static bsfit_err forest_alloc(const bsfit__ordwork *w, forest *f, int on) {
     f->queue = bsfit__alloc(w->a, m * sizeof(size_t));
     f->pos = bsfit__alloc(w->a, m * sizeof(size_t));
     f->dist = bsfit__alloc(w->a, m * sizeof(double));
-    return f->parent && f->tstart && f->tadj && f->comp && f->nxt && f->prv && f->queue &&
-                   f->pos && f->dist ? BSFIT_OK : BSFIT_ENOMEM;
+    return f->parent && f->tstart && f->tadj && f->comp && f->nxt && f->prv && f->queue && f->pos &&
+                   f->dist
+               ? BSFIT_OK
+               : BSFIT_ENOMEM;
   }
   bsfit__free(w->a, f->parent, m * sizeof(size_t));
   bsfit__free(w->a, f->tstart, (m + 1) * sizeof(size_t));
@@ -215,7 +219,8 @@ static bsfit_err forest_alloc(const bsfit__ordwork *w, forest *f, int on) {
 }
 
 /* Every part: its tour, closed or not, improved by 2-opt. */
-static bsfit_err parts(const bsfit__ordwork *w, forest *f, bsfit_order_result *r, bsfit_status *st) {
+static bsfit_err parts(const bsfit__ordwork *w, forest *f, bsfit_order_result *r,
+                       bsfit_status *st) {
   size_t i, used = 0, n, q;
   memset(f->pos, 0, w->m * sizeof(size_t));
   r->nloops = 0;

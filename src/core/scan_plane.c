@@ -28,14 +28,16 @@ static void cross(const double a[3], const double b[3], double c[3]) {
   c[2] = a[0] * b[1] - a[1] * b[0];
 }
 
-bsfit_err bsfit_plane_frame(const double dir[3], double position, bsfit_plane *p, bsfit_status *st) {
+bsfit_err bsfit_plane_frame(const double dir[3], double position, bsfit_plane *p,
+                            bsfit_status *st) {
   double n[3], e[3] = {0, 0, 0}, len;
   int k, axis = -1;
   bsfit_err err;
   if (p == NULL) return bsfit__fail(st, BSFIT_EINVAL, "no plane to fill");
   err = bsfit__unit(dir, n, st);
   if (err != BSFIT_OK) return err;
-  if (!isfinite(position)) return bsfit__fail(st, BSFIT_ENONFINITE, "the plane position is not finite");
+  if (!isfinite(position))
+    return bsfit__fail(st, BSFIT_ENONFINITE, "the plane position is not finite");
   for (k = 0; k < 3; k++)
     if (n[k] == 1 || n[k] == -1) axis = k;
   memset(p, 0, sizeof *p);
@@ -168,8 +170,10 @@ void bsfit__secb_truncate_last(bsfit__secbuild *b, size_t npoints) {
 /* A copy of n bytes of p in a block of exactly n bytes (NULL for n == 0 or no memory). */
 static void *exact(bsfit__secbuild *b, const void *p, size_t n) {
   void *q = bsfit__alloc(b->a, n);
-  if (q != NULL) memcpy(q, p, n);
-  else if (n > 0) b->failed = 1;
+  if (q != NULL)
+    memcpy(q, p, n);
+  else if (n > 0)
+    b->failed = 1;
   return q;
 }
 

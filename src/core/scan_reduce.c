@@ -20,7 +20,8 @@ static bsfit_err check_input(const double *xy, size_t m, const double *w, bsfit_
   size_t i;
   if (xy == NULL || m == 0) return bsfit__fail(st, BSFIT_EINVAL, "no points to reduce");
   for (i = 0; i < 2 * m; i++)
-    if (!isfinite(xy[i])) return bsfit__fail(st, BSFIT_ENONFINITE, "point %zu is not finite", i / 2 + 1);
+    if (!isfinite(xy[i]))
+      return bsfit__fail(st, BSFIT_ENONFINITE, "point %zu is not finite", i / 2 + 1);
   for (i = 0; w != NULL && i < m; i++)
     if (!(w[i] > 0) || !isfinite(w[i]))
       return bsfit__fail(st, BSFIT_EWEIGHT, "weight %zu is %g (must be positive)", i + 1, w[i]);
@@ -37,7 +38,8 @@ static bsfit_err reduce(const double *xy, size_t m, const double *w, double cell
     double fx = floor(xy[2 * i] / cell), fy = floor(xy[2 * i + 1] / cell), wi = w ? w[i] : 1;
     int64_t kx, ky;
     size_t h;
-    if ((i & 0xffff) == 0 && bsfit__interrupted(a)) return bsfit__fail(st, BSFIT_EINTR, "reduction interrupted");
+    if ((i & 0xffff) == 0 && bsfit__interrupted(a))
+      return bsfit__fail(st, BSFIT_EINTR, "reduction interrupted");
     if (!(fabs(fx) < 4e18 && fabs(fy) < 4e18))
       return bsfit__fail(st, BSFIT_EINVAL, "cell size %g too small for coordinates near %g", cell,
                          fabs(xy[2 * i]) > fabs(xy[2 * i + 1]) ? xy[2 * i] : xy[2 * i + 1]);
@@ -45,7 +47,8 @@ static bsfit_err reduce(const double *xy, size_t m, const double *w, double cell
     ky = (int64_t)fy;
     h = (size_t)(((uint64_t)kx * 0x9E3779B97F4A7C15ull) ^ ((uint64_t)ky * 0xC2B2AE3D27D4EB4Full));
     h = (h ^ (h >> 31)) & cm->mask;
-    while (cm->out[h] != 0 && (cm->key[2 * h] != kx || cm->key[2 * h + 1] != ky)) h = (h + 1) & cm->mask;
+    while (cm->out[h] != 0 && (cm->key[2 * h] != kx || cm->key[2 * h + 1] != ky))
+      h = (h + 1) & cm->mask;
     if (cm->out[h] == 0) {
       cm->key[2 * h] = kx;
       cm->key[2 * h + 1] = ky;
@@ -116,8 +119,10 @@ static bsfit_err bisect(const double *xy, size_t m, const double *w, size_t targ
       best = c;
     }
     if (best_err <= tol) break;
-    if (n > target) lo = c;
-    else hi = c;
+    if (n > target)
+      lo = c;
+    else
+      hi = c;
   }
   *cell_used = best;
   return reduce(xy, m, w, best, cm, oxy, ow, om, a, st);

@@ -11,11 +11,11 @@
 typedef struct bsfit__secbuild {
   const bsfit_allocator *a;
   size_t nslices;
-  bsfit_plane *planes;      /* nslices, exact */
-  size_t *first_part;       /* nslices + 1, exact */
-  size_t *part_start;       /* cap_parts */
-  unsigned char *closed;    /* cap_closed */
-  double *uv;               /* cap_points * 2 */
+  bsfit_plane *planes;   /* nslices, exact */
+  size_t *first_part;    /* nslices + 1, exact */
+  size_t *part_start;    /* cap_parts */
+  unsigned char *closed; /* cap_closed */
+  double *uv;            /* cap_points * 2 */
   size_t nparts, npoints, cap_parts, cap_closed, cap_points;
   int failed;
 } bsfit__secbuild;
@@ -37,7 +37,7 @@ bsfit_err bsfit__secb_finish(bsfit__secbuild *b, bsfit_sections *out, bsfit_stat
 
 /* Orients the closed parts p0..p1-1 (points uv, part_start, closed as in bsfit_sections):
 ** counter-clockwise when inside an even number of the others, clockwise otherwise. */
-void bsfit__orient_loops(double *uv, const size_t *start, const unsigned char *closed,
-                         size_t p0, size_t p1);
+void bsfit__orient_loops(double *uv, const size_t *start, const unsigned char *closed, size_t p0,
+                         size_t p1);
 
 #endif

@@ -25,8 +25,10 @@ static size_t first_at_least(const posidx *v, size_t n, double x) {
   size_t lo = 0, hi = n;
   while (lo < hi) {
     size_t mid = lo + (hi - lo) / 2;
-    if (v[mid].pos < x) lo = mid + 1;
-    else hi = mid;
+    if (v[mid].pos < x)
+      lo = mid + 1;
+    else
+      hi = mid;
   }
   return lo;
 }
@@ -85,13 +87,15 @@ bsfit_err bsfit_cloud_slice(const double *xyz, size_t n, const double dir[3], co
   size_t *cur, s;
   bsfit__secbuild b;
   bsfit_err e;
-  if (xyz == NULL || n == 0 || out == NULL) return bsfit__fail(st, BSFIT_EINVAL, "no points to slice");
+  if (xyz == NULL || n == 0 || out == NULL)
+    return bsfit__fail(st, BSFIT_EINVAL, "no points to slice");
   if (pos == NULL || npos == 0) return bsfit__fail(st, BSFIT_EINVAL, "no planes to slice with");
   if (!(thickness > 0) || !isfinite(thickness))
     return bsfit__fail(st, BSFIT_EINVAL, "the slab thickness must be > 0, got %g", thickness);
   e = bsfit__unit(dir, nrm, st);
   if (e != BSFIT_OK) return e;
-  if (!bsfit__all_finite(pos, npos)) return bsfit__fail(st, BSFIT_ENONFINITE, "a plane position is not finite");
+  if (!bsfit__all_finite(pos, npos))
+    return bsfit__fail(st, BSFIT_ENONFINITE, "a plane position is not finite");
   ord = bsfit__alloc(a, bsfit__mulsize(npos, sizeof *ord));
   cur = bsfit__alloc(a, bsfit__mulsize(npos + 1, sizeof *cur));
   e = bsfit__secb_init(&b, npos, a, st);
@@ -108,8 +112,10 @@ bsfit_err bsfit_cloud_slice(const double *xyz, size_t n, const double dir[3], co
     qsort(ord, npos, sizeof *ord, cmp_pos);
     memset(cur, 0, (npos + 1) * sizeof *cur);
     e = fill(xyz, n, nrm, ord, npos, thickness / 2, cur, &b, a, st);
-    if (e == BSFIT_OK) e = bsfit__secb_finish(&b, out, st);
-    else bsfit__secb_free(&b);
+    if (e == BSFIT_OK)
+      e = bsfit__secb_finish(&b, out, st);
+    else
+      bsfit__secb_free(&b);
   }
   bsfit__free(a, ord, npos * sizeof *ord);
   bsfit__free(a, cur, (npos + 1) * sizeof *cur);

@@ -21,12 +21,12 @@ typedef struct slicer {
   double *h; /* vertex heights along the normal */
   double tol;
   const bsfit_allocator *a;
-  size_t cap;      /* candidate triangles the scratch below is sized for */
-  uint64_t *keys;  /* hash of edge keys, 4*cap rounded up to a power of 2 */
-  uint32_t *slot;  /* node id + 1 per hash slot */
+  size_t cap;     /* candidate triangles the scratch below is sized for */
+  uint64_t *keys; /* hash of edge keys, 4*cap rounded up to a power of 2 */
+  uint32_t *slot; /* node id + 1 per hash slot */
   size_t hmask;
-  double *nuv;     /* 2 per node */
-  uint32_t *seg;   /* 2 per segment */
+  double *nuv;   /* 2 per node */
+  uint32_t *seg; /* 2 per segment */
   size_t *adj_start;
   uint32_t *adj, *chain;
   unsigned char *used;
@@ -110,7 +110,8 @@ static uint32_t edge_node(slicer *S, const bsfit_plane *pl, uint32_t i, uint32_t
 
 /* Cuts the candidate triangles; on-plane vertices count as side `on` (+1 or -1).
 ** *touch is set when some vertex lies on the plane. */
-static void cut(slicer *S, const bsfit_plane *pl, const size_t *cand, size_t n, int on, int *touch) {
+static void cut(slicer *S, const bsfit_plane *pl, const size_t *cand, size_t n, int on,
+                int *touch) {
   size_t c, hs = S->hmask + 1;
   memset(S->slot, 0, hs * sizeof(uint32_t));
   S->nnodes = S->nsegs = 0;
@@ -203,8 +204,10 @@ static void emit(slicer *S, bsfit__secbuild *b, size_t n, int closed) {
     if (dx * dx + dy * dy > tol2) break;
     k--;
   }
-  if (k < (closed ? 3u : 2u)) bsfit__secb_drop_last(b);
-  else bsfit__secb_truncate_last(b, k);
+  if (k < (closed ? 3u : 2u))
+    bsfit__secb_drop_last(b);
+  else
+    bsfit__secb_truncate_last(b, k);
 }
 
 /* Chains the segments into parts: open chains from their ends first, then loops. */
@@ -261,8 +264,8 @@ static void reverse(double *p, size_t n) {
   }
 }
 
-void bsfit__orient_loops(double *uv, const size_t *start, const unsigned char *closed,
-                         size_t p0, size_t p1) {
+void bsfit__orient_loops(double *uv, const size_t *start, const unsigned char *closed, size_t p0,
+                         size_t p1) {
   size_t i, j;
   for (i = p0; i < p1; i++) {
     double *p = uv + 2 * start[i];
@@ -304,8 +307,10 @@ static size_t bound(const double *v, size_t n, double x, int strict) {
   size_t lo = 0, hi = n;
   while (lo < hi) {
     size_t mid = lo + (hi - lo) / 2;
-    if (v[mid] < x || (strict && v[mid] == x)) lo = mid + 1;
-    else hi = mid;
+    if (v[mid] < x || (strict && v[mid] == x))
+      lo = mid + 1;
+    else
+      hi = mid;
   }
   return lo;
 }
@@ -382,8 +387,8 @@ static bsfit_err heights(slicer *S, const double n[3], double *tol, bsfit_status
 }
 
 /* Cuts the planes one after the other, in the caller's order. */
-static bsfit_err cut_all(slicer *S, bucketing *B, const double n[3], const double *pos,
-                         size_t npos, bsfit__secbuild *b, bsfit_status *st) {
+static bsfit_err cut_all(slicer *S, bucketing *B, const double n[3], const double *pos, size_t npos,
+                         bsfit__secbuild *b, bsfit_status *st) {
   size_t r, i, *rank = B->cstart + npos + 1; /* rank[i]: sorted place of slice i */
   int touch;
   for (r = 0; r < npos; r++) rank[B->order[r].idx] = r;
@@ -408,8 +413,8 @@ static bsfit_err cut_all(slicer *S, bucketing *B, const double n[3], const doubl
   return BSFIT_OK;
 }
 
-bsfit_err bsfit_mesh_slice(const bsfit_scan *m, const double dir[3], const double *pos,
-                           size_t npos, double tol, bsfit_sections *out, const bsfit_allocator *a,
+bsfit_err bsfit_mesh_slice(const bsfit_scan *m, const double dir[3], const double *pos, size_t npos,
+                           double tol, bsfit_sections *out, const bsfit_allocator *a,
                            bsfit_status *st) {
   slicer S;
   bucketing B;
@@ -422,7 +427,8 @@ bsfit_err bsfit_mesh_slice(const bsfit_scan *m, const double dir[3], const doubl
   if (pos == NULL || npos == 0) return bsfit__fail(st, BSFIT_EINVAL, "no planes to slice with");
   e = bsfit__unit(dir, n, st);
   if (e != BSFIT_OK) return e;
-  if (!bsfit__all_finite(pos, npos)) return bsfit__fail(st, BSFIT_ENONFINITE, "a plane position is not finite");
+  if (!bsfit__all_finite(pos, npos))
+    return bsfit__fail(st, BSFIT_ENONFINITE, "a plane position is not finite");
   memset(&S, 0, sizeof S);
   memset(&B, 0, sizeof B);
   S.m = m;
@@ -431,19 +437,23 @@ bsfit_err bsfit_mesh_slice(const bsfit_scan *m, const double dir[3], const doubl
   B.order = bsfit__alloc(a, bsfit__mulsize(npos, sizeof(posidx)));
   B.sorted = bsfit__alloc(a, bsfit__mulsize(npos, sizeof(double)));
   B.cstart = bsfit__alloc(a, bsfit__mulsize(2 * npos + 1, sizeof(size_t)));
-  e = (S.h && B.order && B.sorted && B.cstart) ? BSFIT_OK
-                                               : bsfit__fail(st, BSFIT_ENOMEM, "out of memory slicing");
+  e = (S.h && B.order && B.sorted && B.cstart)
+          ? BSFIT_OK
+          : bsfit__fail(st, BSFIT_ENOMEM, "out of memory slicing");
   if (e == BSFIT_OK) e = heights(&S, n, &tol, st);
   S.tol = tol;
   if (e == BSFIT_OK) e = bucket(&S, &B, pos, npos, st);
   for (i = 0; e == BSFIT_OK && i < npos; i++)
     if (B.cstart[i + 1] - B.cstart[i] > maxc) maxc = B.cstart[i + 1] - B.cstart[i];
-  if (e == BSFIT_OK && !scratch_alloc(&S, maxc)) e = bsfit__fail(st, BSFIT_ENOMEM, "out of memory slicing");
+  if (e == BSFIT_OK && !scratch_alloc(&S, maxc))
+    e = bsfit__fail(st, BSFIT_ENOMEM, "out of memory slicing");
   if (e == BSFIT_OK) e = bsfit__secb_init(&b, npos, a, st);
   if (e == BSFIT_OK) {
     e = cut_all(&S, &B, n, pos, npos, &b, st);
-    if (e == BSFIT_OK) e = bsfit__secb_finish(&b, out, st);
-    else bsfit__secb_free(&b);
+    if (e == BSFIT_OK)
+      e = bsfit__secb_finish(&b, out, st);
+    else
+      bsfit__secb_free(&b);
   }
   scratch_free(&S);
   bsfit__free(a, S.h, m->nv * sizeof(double));

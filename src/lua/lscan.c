@@ -2,15 +2,18 @@
 ** lscan.c
 ** bs.scan: from a scan file to ordered sections.
 **
-**   local scan = bs.scan.read(path [, format])   -- {points = Points(n x 3),
-**                                                --  triangles = Triangles or nil, kind = "mesh"|"cloud"}
+**   local scan = bs.scan.read(path [, format])
+**     --> {points = Points(n x 3), triangles = Triangles or nil, kind = "mesh" | "cloud"}
 **   local T = bs.scan.triangles{{1, 2, 3}, ...}  -- 1-based vertex ids; #T, T:get(i) --> a, b, c
 **   local lo, hi = bs.scan.extent(P, "z" | {x, y, z})
 **   local pos = bs.scan.positions(lo, hi, {slices = N | spacing = D | at = {...}})
 **   local slices = bs.scan.slice(scan, {axis = "z" | direction = {x, y, z},
-**                                       slices = N | spacing = D | at = {...}, thickness = T, tol = e})
+**                                       slices = N | spacing = D | at = {...},
+**                                       thickness = T, tol = e})
 **   local R, w, cell = bs.scan.reduce(P, {cell = C | target = N, weights = w})
-**   local loops, rep = bs.scan.order(P, {method = "auto"|"angle"|"graph", k = 8, gap = 4, min_points = 3})
+**   local loops, rep = bs.scan.order(P, {method = "auto"|"angle"|"graph", k = 8, gap = 4,
+**                                        min_points = 3})
+**   bs.scan.write_iges(path, {C1, C2, ...})       -- one IGES file, one entity 126 per curve
 **
 ** A file that cannot be read or parsed returns nil, message, code (as bs.points.read);
 ** misuse raises.
@@ -61,7 +64,8 @@ static tmp_ud *newtmp(lua_State *L) {
 
 static tri_ud *newtri(lua_State *L, size_t n) {
   tri_ud *T;
-  luaL_argcheck(L, n <= (SIZE_MAX - sizeof(tri_ud)) / (3 * sizeof(uint32_t)), 1, "too many triangles");
+  luaL_argcheck(L, n <= (SIZE_MAX - sizeof(tri_ud)) / (3 * sizeof(uint32_t)), 1,
+                "too many triangles");
   T = (tri_ud *)lua_newuserdatauv(L, sizeof(tri_ud) + 3 * n * sizeof(uint32_t), 0);
   T->n = n;
   luaL_setmetatable(L, BSFIT_TRIANGLES_T);
@@ -89,7 +93,9 @@ static int scan_triangles(lua_State *L) {
       lua_geti(L, -1, k + 1);
       v = lua_tointegerx(L, -1, &isnum);
       if (!isnum || v < 1 || v > (lua_Integer)UINT32_MAX)
-        luaL_argerror(L, 1, lua_pushfstring(L, "triangle %d: vertex %d is not an id >= 1", (int)i + 1, k + 1));
+        luaL_argerror(
+            L, 1,
+            lua_pushfstring(L, "triangle %d: vertex %d is not an id >= 1", (int)i + 1, k + 1));
       T->t[3 * i + (size_t)k] = (uint32_t)(v - 1);
       lua_pop(L, 1);
     }
@@ -175,7 +181,8 @@ static void todir(lua_State *L, int i, int arg, const char *what, double d[3]) {
         d[k] = 1;
         return;
       }
-    luaL_argerror(L, arg, lua_pushfstring(L, "%s must be \"x\", \"y\" or \"z\", got '%s'", what, s));
+    luaL_argerror(L, arg,
+                  lua_pushfstring(L, "%s must be \"x\", \"y\" or \"z\", got '%s'", what, s));
   }
   if (lua_type(L, i) != LUA_TTABLE)
     luaL_argerror(L, arg, lua_pushfstring(L, "%s must be an axis name or {x, y, z}", what));
@@ -200,9 +207,12 @@ static void opts_dir(lua_State *L, int t, double d[3]) {
     todir(L, lua_gettop(L), t, "field 'direction'", d);
   } else {
     lua_pop(L, 1);
-    if (ta == LUA_TNIL) lua_pushliteral(L, "z");
-    else bsfit__lua_field(L, t, "axis");
-    if (lua_type(L, -1) != LUA_TSTRING) luaL_argerror(L, t, "field 'axis' must be \"x\", \"y\" or \"z\"");
+    if (ta == LUA_TNIL)
+      lua_pushliteral(L, "z");
+    else
+      bsfit__lua_field(L, t, "axis");
+    if (lua_type(L, -1) != LUA_TSTRING)
+      luaL_argerror(L, t, "field 'axis' must be \"x\", \"y\" or \"z\"");
     todir(L, lua_gettop(L), t, "field 'axis'", d);
   }
   lua_pop(L, 1);
@@ -223,6 +233,37 @@ static int scan_extent(lua_State *L) {
   return 2;
 }
 
+/* Pushes the positions of field 'at' of options table t, checked (see push_positions). */
+static size_t push_at(lua_State *L, int t, double *gap) {
+  size_t n, i;
+  bsfit__lua_field(L, t, "at");
+  luaL_argcheck(L, lua_type(L, -1) == LUA_TTABLE, t, "field 'at' must be a table of numbers");
+  n = (size_t)luaL_len(L, -1);
+  luaL_argcheck(L, n >= 1 && n <= 10000000, t, "field 'at' must hold 1 to 10^7 positions");
+  lua_createtable(L, (int)n, 0);
+  for (i = 1; i <= n; i++) {
+    int isnum;
+    double x;
+    lua_geti(L, -2, (lua_Integer)i);
+    x = lua_tonumberx(L, -1, &isnum);
+    if (!isnum || !isfinite(x))
+      luaL_argerror(L, t,
+                    lua_pushfstring(L, "field 'at': position %d is not a finite number", (int)i));
+    lua_seti(L, -2, (lua_Integer)i);
+  }
+  lua_remove(L, -2);
+  for (i = 1; i < n; i++) {
+    double a, b;
+    lua_geti(L, -1, (lua_Integer)i);
+    lua_geti(L, -2, (lua_Integer)i + 1);
+    a = lua_tonumber(L, -2);
+    b = lua_tonumber(L, -1);
+    lua_pop(L, 2);
+    if (fabs(b - a) > 0 && (*gap == 0 || fabs(b - a) < *gap)) *gap = fabs(b - a);
+  }
+  return n;
+}
+
 /* Pushes the positions the options at t ask for, as a table; *gap receives the smallest
 ** distance between neighbouring positions (0 for one position). */
 static size_t push_positions(lua_State *L, int t, double lo, double hi, double *gap) {
@@ -233,33 +274,7 @@ static size_t push_positions(lua_State *L, int t, double lo, double hi, double *
   lua_pop(L, 3);
   luaL_argcheck(L, has_n + has_d + has_at == 1, t, "give exactly one of slices, spacing, at");
   *gap = 0;
-  if (has_at) {
-    bsfit__lua_field(L, t, "at");
-    luaL_argcheck(L, lua_type(L, -1) == LUA_TTABLE, t, "field 'at' must be a table of numbers");
-    n = (size_t)luaL_len(L, -1);
-    luaL_argcheck(L, n >= 1, t, "field 'at' is empty");
-    lua_createtable(L, (int)n, 0);
-    for (i = 1; i <= n; i++) {
-      int isnum;
-      double x;
-      lua_geti(L, -2, (lua_Integer)i);
-      x = lua_tonumberx(L, -1, &isnum);
-      if (!isnum || !isfinite(x))
-        luaL_argerror(L, t, lua_pushfstring(L, "field 'at': position %d is not a finite number", (int)i));
-      lua_seti(L, -2, (lua_Integer)i);
-    }
-    lua_remove(L, -2);
-    for (i = 1; i < n; i++) {
-      double a, b;
-      lua_geti(L, -1, (lua_Integer)i);
-      lua_geti(L, -2, (lua_Integer)i + 1);
-      a = lua_tonumber(L, -2);
-      b = lua_tonumber(L, -1);
-      lua_pop(L, 2);
-      if (fabs(b - a) > 0 && (*gap == 0 || fabs(b - a) < *gap)) *gap = fabs(b - a);
-    }
-    return n;
-  }
+  if (has_at) return push_at(L, t, gap);
   if (has_n) {
     lua_Integer k = opt_integer(L, t, "slices", 1);
     luaL_argcheck(L, k >= 1 && k <= 10000000, t, "field 'slices' must be in 1..10^7");
@@ -387,8 +402,8 @@ static void toscan(lua_State *L, bsfit_scan *s) {
   s->nv = P->n;
 }
 
-static const char *const slice_opts[] = {"axis", "direction", "slices", "spacing", "at",
-                                         "thickness", "tol", NULL};
+static const char *const slice_opts[] = {"axis", "direction", "slices", "spacing",
+                                         "at",   "thickness", "tol",    NULL};
 
 /* bs.scan.slice(scan, opts) --> {slice, ...} */
 static int scan_slice(lua_State *L) {
@@ -421,8 +436,10 @@ static int scan_slice(lua_State *L) {
   if (!(thick > 0)) /* a quarter of the spacing keeps slabs thin but populated */
     thick = gap > 0 ? gap / 4 : hi > lo ? (hi - lo) / 100 : 1e-9 * (fabs(lo) > 1 ? fabs(lo) : 1);
   tmp = newtmp(L);
-  if (s.tri != NULL) e = bsfit_mesh_slice(&s, d, pos, n, tol, &tmp->sec, &a, &st);
-  else e = bsfit_cloud_slice(s.xyz, s.nv, d, pos, n, thick, &tmp->sec, &a, &st);
+  if (s.tri != NULL)
+    e = bsfit_mesh_slice(&s, d, pos, n, tol, &tmp->sec, &a, &st);
+  else
+    e = bsfit_cloud_slice(s.xyz, s.nv, d, pos, n, thick, &tmp->sec, &a, &st);
   if (e == BSFIT_EINVAL && s.tri != NULL) return bsfit__lua_raise(L, e, &st, 1);
   if (e != BSFIT_OK) return bsfit__lua_raise(L, e, &st, 0);
   push_slices(L, &tmp->sec, s.tri != NULL, thick);
@@ -451,7 +468,8 @@ static int scan_reduce(lua_State *L) {
   bsfit_err e;
   luaL_argcheck(L, P->dim == 2, 1, "2D points expected (a section in its plane)");
   luaL_argcheck(L, m >= 1, 1, "no points");
-  luaL_argcheck(L, (cell > 0) != (target > 0), 2, "give exactly one of cell (> 0) and target (>= 1)");
+  luaL_argcheck(L, (cell > 0) != (target > 0), 2,
+                "give exactly one of cell (> 0) and target (>= 1)");
   luaL_argcheck(L, cell == 0 || isfinite(cell), 2, "field 'cell' must be finite");
   if (bsfit__lua_field(L, t, "weights") != LUA_TNIL) {
     W = bsfit__lua_tovector(L, lua_gettop(L));
@@ -461,9 +479,11 @@ static int scan_reduce(lua_State *L) {
   bsfit__lua_checkfinite(L, 1, P);
   luaL_argcheck(L, m <= SIZE_MAX / (3 * sizeof(double)), 1, "too many points");
   buf = (double *)lua_newuserdatauv(L, 3 * m * sizeof(double), 0);
-  if (cell > 0) e = bsfit_reduce_grid(P->xy, m, W ? W->x : NULL, cell, buf, buf + 2 * m, &n, &a, &st);
-  else e = bsfit_reduce_target(P->xy, m, W ? W->x : NULL, (size_t)target, &cell, buf, buf + 2 * m,
-                               &n, &a, &st);
+  if (cell > 0)
+    e = bsfit_reduce_grid(P->xy, m, W ? W->x : NULL, cell, buf, buf + 2 * m, &n, &a, &st);
+  else
+    e = bsfit_reduce_target(P->xy, m, W ? W->x : NULL, (size_t)target, &cell, buf, buf + 2 * m, &n,
+                            &a, &st);
   if (e == BSFIT_EDEGENERATE) return bsfit__lua_result(L, e, &st, 0, 0);
   if (e != BSFIT_OK) return bsfit__lua_raise(L, e, &st, 2);
   R = bsfit__lua_allocpoints(L, n, 2);
@@ -512,9 +532,11 @@ static int scan_order(lua_State *L) {
   size_t l, q;
   const char *meth = opt_string(L, t, "method", "auto");
   bsfit_order_opts_init(&o);
-  for (q = 0; method_names[q] != NULL && strcmp(method_names[q], meth) != 0; q++) {}
+  for (q = 0; method_names[q] != NULL && strcmp(method_names[q], meth) != 0; q++) {
+  }
   if (method_names[q] == NULL)
-    luaL_argerror(L, 2, lua_pushfstring(L, "field 'method' must be auto, angle or graph, got '%s'", meth));
+    luaL_argerror(
+        L, 2, lua_pushfstring(L, "field 'method' must be auto, angle or graph, got '%s'", meth));
   o.method = (bsfit_order_method)q;
   o.k = (int)opt_integer(L, t, "k", 8);
   o.gap = opt_number(L, t, "gap", 4);
@@ -597,12 +619,12 @@ static int scan_write_iges(lua_State *L) {
 
 static const luaL_Reg tri_meth[] = {{"get", tri_get}, {NULL, NULL}};
 static const luaL_Reg tri_metameth[] = {
-  {"__index", NULL}, {"__len", tri_len}, {"__tostring", tri_tostring}, {NULL, NULL}};
+    {"__index", NULL}, {"__len", tri_len}, {"__tostring", tri_tostring}, {NULL, NULL}};
 
 static const luaL_Reg scan_funcs[] = {
-  {"read", scan_read},       {"triangles", scan_triangles}, {"extent", scan_extent},
-  {"positions", scan_positions}, {"slice", scan_slice},   {"reduce", scan_reduce},
-  {"order", scan_order},     {"write_iges", scan_write_iges}, {NULL, NULL}};
+    {"read", scan_read},           {"triangles", scan_triangles},   {"extent", scan_extent},
+    {"positions", scan_positions}, {"slice", scan_slice},           {"reduce", scan_reduce},
+    {"order", scan_order},         {"write_iges", scan_write_iges}, {NULL, NULL}};
 
 /* Builds the metatables and sets bs.scan in the module table on the stack top. */
 void bsfit__lua_lib_scan(lua_State *L) {

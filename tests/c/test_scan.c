@@ -50,10 +50,11 @@ static void binary_ply(bytes *o, int big) {
   int i;
   o->n = 0;
   puts_(o, big ? "ply\nformat binary_big_endian 1.0\n" : "ply\nformat binary_little_endian 1.0\n");
-  puts_(o, "comment every type\nelement vertex 5\nproperty uchar a\nproperty short x\n"
-           "property char y\nproperty ushort b\nproperty int c\nproperty uint d\nproperty float e\n"
-           "property double z\nelement face 2\nproperty list uchar ushort vertex_indices\n"
-           "end_header\n");
+  puts_(o,
+        "comment every type\nelement vertex 5\nproperty uchar a\nproperty short x\n"
+        "property char y\nproperty ushort b\nproperty int c\nproperty uint d\nproperty float e\n"
+        "property double z\nelement face 2\nproperty list uchar ushort vertex_indices\n"
+        "end_header\n");
   for (i = 0; i < 5; i++) {
     unsigned char a = 200;
     int16_t x = (int16_t)(1000 * i);
@@ -85,12 +86,13 @@ static void test_ply_every_type(void **state) {
     bsfit_status st;
     binary_ply(&o, big);
     bsfit_scan_init(&s);
-    assert_int_equal(bsfit_scan_parse((const char *)o.b, o.n, BSFIT_SCAN_PLY, "t.ply", &s, NULL, &st),
-                     BSFIT_OK);
+    assert_int_equal(
+        bsfit_scan_parse((const char *)o.b, o.n, BSFIT_SCAN_PLY, "t.ply", &s, NULL, &st), BSFIT_OK);
     assert_int_equal(s.nv, 5);
     assert_int_equal(s.nt, 3); /* the quad is a fan of two */
     for (i = 0; i < 5; i++) {
-      assert_true(s.xyz[3 * i] == 1000.0 * i && s.xyz[3 * i + 1] == -i && s.xyz[3 * i + 2] == i / 4.0);
+      assert_true(s.xyz[3 * i] == 1000.0 * i && s.xyz[3 * i + 1] == -i &&
+                  s.xyz[3 * i + 2] == i / 4.0);
     }
     assert_true(s.tri[3] == 1 && s.tri[4] == 2 && s.tri[5] == 3);
     assert_true(s.tri[6] == 1 && s.tri[7] == 3 && s.tri[8] == 4);
@@ -106,13 +108,14 @@ static void test_ply_every_type(void **state) {
 ** ===================================================================== */
 
 static const char *ascii_ply =
-  "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
-  "element face 2\nproperty list uchar int vertex_indices\nend_header\n"
-  "0 0 0\n1 0 0\n1 1 0\n0 1 1\n3 0 1 2\n3 0 2 3\n";
+    "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float "
+    "z\n"
+    "element face 2\nproperty list uchar int vertex_indices\nend_header\n"
+    "0 0 0\n1 0 0\n1 1 0\n0 1 1\n3 0 1 2\n3 0 2 3\n";
 static const char *ascii_stl =
-  "solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 1 1 0\nendloop\n"
-  "endfacet\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 1 0\nvertex 0 1 1\nendloop\n"
-  "endfacet\nendsolid t\n";
+    "solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 1 1 0\nendloop\n"
+    "endfacet\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 1 0\nvertex 0 1 1\nendloop\n"
+    "endfacet\nendsolid t\n";
 static const char *obj = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 1\nvt 0 0\nf 1/1 2/1 3/1\nf -4 -2 -1\n";
 
 static void binary_stl(bytes *o) {
@@ -139,7 +142,8 @@ static void check_valid(const bsfit_scan *s) {
   for (i = 0; i < 3 * s->nt; i++) assert_true(s->tri[i] < s->nv);
 }
 
-static void mutate_and_parse(const unsigned char *src, size_t n, bsfit_scan_format fmt, test_rng *r) {
+static void mutate_and_parse(const unsigned char *src, size_t n, bsfit_scan_format fmt,
+                             test_rng *r) {
   unsigned char buf[2048];
   int round;
   for (round = 0; round < 3000; round++) {
@@ -151,15 +155,24 @@ static void mutate_and_parse(const unsigned char *src, size_t n, bsfit_scan_form
     for (k = 0; k < edits; k++) {
       double c = rng_uniform(r);
       size_t at = (size_t)(rng_uniform(r) * (double)len);
-      if (c < 0.5 && len > 0) buf[at % len] = (unsigned char)(rng_uniform(r) * 256);
-      else if (c < 0.7) len = at;
-      else if (c < 0.85 && len > 0) buf[at % len] = (unsigned char)"0123456789-. \n/e"[(int)(rng_uniform(r) * 16)];
-      else if (len > 1) { memmove(buf + at % len, buf + at % len + 1, len - at % len - 1); len--; }
+      if (c < 0.5 && len > 0)
+        buf[at % len] = (unsigned char)(rng_uniform(r) * 256);
+      else if (c < 0.7)
+        len = at;
+      else if (c < 0.85 && len > 0)
+        buf[at % len] = (unsigned char)"0123456789-. \n/e"[(int)(rng_uniform(r) * 16)];
+      else if (len > 1) {
+        memmove(buf + at % len, buf + at % len + 1, len - at % len - 1);
+        len--;
+      }
     }
     bsfit_scan_init(&s);
     e = bsfit_scan_parse((const char *)buf, len, fmt, "m", &s, NULL, &st);
-    if (e == BSFIT_OK) check_valid(&s);
-    else assert_true(e == BSFIT_EFORMAT || e == BSFIT_ENONFINITE || e == BSFIT_ETOOFEW || e == BSFIT_EINVAL);
+    if (e == BSFIT_OK)
+      check_valid(&s);
+    else
+      assert_true(e == BSFIT_EFORMAT || e == BSFIT_ENONFINITE || e == BSFIT_ETOOFEW ||
+                  e == BSFIT_EINVAL);
     bsfit_scan_free(&s);
   }
 }
@@ -201,7 +214,7 @@ static void sphere(bsfit_scan *s, double R, const double c[3], size_t nlat, size
     }
   s->xyz[3 * v] = c[0], s->xyz[3 * v + 1] = c[1], s->xyz[3 * v + 2] = c[2] + R; /* north: v */
   s->xyz[3 * v + 3] = c[0], s->xyz[3 * v + 4] = c[1], s->xyz[3 * v + 5] = c[2] - R;
-#define ID(i, j) ((uint32_t)(((i) - 1) * nlon + ((j) % nlon)))
+#define ID(i, j) ((uint32_t)(((i)-1) * nlon + ((j) % nlon)))
   for (j = 0; j < nlon; j++) {
     uint32_t *T = s->tri + 3 * t++;
     T[0] = (uint32_t)v, T[1] = ID(1, j), T[2] = ID(1, j + 1);
@@ -246,15 +259,18 @@ static void test_sphere_sections(void **state) {
       const bsfit_plane *p = &out.planes[k];
       double d = pos[k] - (n[0] * c[0] + n[1] * c[1] + n[2] * c[2]), rho = sqrt(R * R - d * d);
       /* the circle's centre in the plane's (u, v) frame */
-      double cu = (c[0] - p->origin[0]) * p->u[0] + (c[1] - p->origin[1]) * p->u[1] + (c[2] - p->origin[2]) * p->u[2];
-      double cv = (c[0] - p->origin[0]) * p->v[0] + (c[1] - p->origin[1]) * p->v[1] + (c[2] - p->origin[2]) * p->v[2];
+      double cu = (c[0] - p->origin[0]) * p->u[0] + (c[1] - p->origin[1]) * p->u[1] +
+                  (c[2] - p->origin[2]) * p->u[2];
+      double cv = (c[0] - p->origin[0]) * p->v[0] + (c[1] - p->origin[1]) * p->v[1] +
+                  (c[2] - p->origin[2]) * p->v[2];
       double area = 0;
       size_t j = out.first_part[k], m;
       assert_int_equal(out.first_part[k + 1] - j, 1);
       assert_true(out.closed[j]);
       m = out.part_start[j + 1] - out.part_start[j];
       for (q = 0; q < m; q++) {
-        const double *P = out.uv + 2 * (out.part_start[j] + q), *Q = out.uv + 2 * (out.part_start[j] + (q + 1) % m);
+        const double *P = out.uv + 2 * (out.part_start[j] + q),
+                     *Q = out.uv + 2 * (out.part_start[j] + (q + 1) % m);
         double rr = hypot(P[0] - cu, P[1] - cv);
         assert_true(rr <= rho + 1e-9 && rr >= rho - tess - 1e-9);
         area += P[0] * Q[1] - Q[0] * P[1];
@@ -278,22 +294,22 @@ static void test_sphere_sections(void **state) {
 
 /* Calls f with an allocator failing the 1st, 2nd, ... allocation: ENOMEM and nothing
 ** leaked until it succeeds (then cleanup is called and nothing is left either). */
-#define ENOMEM_LOOP(call, cleanup)                              \
-  do {                                                          \
-    long n_;                                                    \
-    for (n_ = 1; n_ < 500; n_++) {                              \
-      counting c_ = {0, n_, 0};                                 \
-      bsfit_allocator a = {counting_alloc, &c_, NULL};          \
-      bsfit_err e_ = (call);                                    \
-      if (e_ == BSFIT_OK) {                                     \
-        cleanup;                                                \
-        assert_int_equal(c_.live, 0);                           \
-        break;                                                  \
-      }                                                         \
-      assert_int_equal(e_, BSFIT_ENOMEM);                       \
-      assert_int_equal(c_.live, 0);                             \
-    }                                                           \
-    assert_true(n_ > 1 && n_ < 500);                            \
+#define ENOMEM_LOOP(call, cleanup)                     \
+  do {                                                 \
+    long n_;                                           \
+    for (n_ = 1; n_ < 500; n_++) {                     \
+      counting c_ = {0, n_, 0};                        \
+      bsfit_allocator a = {counting_alloc, &c_, NULL}; \
+      bsfit_err e_ = (call);                           \
+      if (e_ == BSFIT_OK) {                            \
+        cleanup;                                       \
+        assert_int_equal(c_.live, 0);                  \
+        break;                                         \
+      }                                                \
+      assert_int_equal(e_, BSFIT_ENOMEM);              \
+      assert_int_equal(c_.live, 0);                    \
+    }                                                  \
+    assert_true(n_ > 1 && n_ < 500);                   \
   } while (0)
 
 static void test_allocation_failures(void **state) {
@@ -301,19 +317,24 @@ static void test_allocation_failures(void **state) {
   bsfit_scan s, sp;
   bsfit_sections sec;
   bsfit_order_result ord;
-  double c[3] = {0, 0, 0}, z[3] = {0, 0, 1}, pos[3] = {-0.5, 0, 0.5}, xy[2 * 200], rxy[400], rw[200], cell;
+  double c[3] = {0, 0, 0}, z[3] = {0, 0, 1}, pos[3] = {-0.5, 0, 0.5}, xy[2 * 200], rxy[400],
+         rw[200], cell;
   size_t i, rm;
   (void)state;
   binary_ply(&o, 1);
   bsfit_scan_init(&s);
-  ENOMEM_LOOP(bsfit_scan_parse((const char *)o.b, o.n, BSFIT_SCAN_PLY, "t", &s, &a, NULL), bsfit_scan_free(&s));
-  ENOMEM_LOOP(bsfit_scan_parse(ascii_stl, strlen(ascii_stl), BSFIT_SCAN_STL, "t", &s, &a, NULL), bsfit_scan_free(&s));
-  ENOMEM_LOOP(bsfit_scan_parse(obj, strlen(obj), BSFIT_SCAN_OBJ, "t", &s, &a, NULL), bsfit_scan_free(&s));
+  ENOMEM_LOOP(bsfit_scan_parse((const char *)o.b, o.n, BSFIT_SCAN_PLY, "t", &s, &a, NULL),
+              bsfit_scan_free(&s));
+  ENOMEM_LOOP(bsfit_scan_parse(ascii_stl, strlen(ascii_stl), BSFIT_SCAN_STL, "t", &s, &a, NULL),
+              bsfit_scan_free(&s));
+  ENOMEM_LOOP(bsfit_scan_parse(obj, strlen(obj), BSFIT_SCAN_OBJ, "t", &s, &a, NULL),
+              bsfit_scan_free(&s));
   bsfit_scan_init(&sp);
   sphere(&sp, 1, c, 10, 16);
   bsfit_sections_init(&sec);
   ENOMEM_LOOP(bsfit_mesh_slice(&sp, z, pos, 3, 0, &sec, &a, NULL), bsfit_sections_free(&sec));
-  ENOMEM_LOOP(bsfit_cloud_slice(sp.xyz, sp.nv, z, pos, 3, 0.2, &sec, &a, NULL), bsfit_sections_free(&sec));
+  ENOMEM_LOOP(bsfit_cloud_slice(sp.xyz, sp.nv, z, pos, 3, 0.2, &sec, &a, NULL),
+              bsfit_sections_free(&sec));
   for (i = 0; i < 200; i++) {
     xy[2 * i] = cos(2 * PI * (double)i / 200) * (1 + 0.3 * (i % 2));
     xy[2 * i + 1] = sin(2 * PI * (double)i / 200);
@@ -338,7 +359,8 @@ static void test_interrupt(void **state) {
   (void)state;
   binary_ply(&o, 0);
   bsfit_scan_init(&s);
-  assert_int_equal(bsfit_scan_parse((const char *)o.b, o.n, BSFIT_SCAN_PLY, "t", &s, &a, NULL), BSFIT_EINTR);
+  assert_int_equal(bsfit_scan_parse((const char *)o.b, o.n, BSFIT_SCAN_PLY, "t", &s, &a, NULL),
+                   BSFIT_EINTR);
   bsfit_scan_init(&sp);
   sphere(&sp, 1, c, 10, 16);
   bsfit_sections_init(&sec);
@@ -356,11 +378,9 @@ static void test_interrupt(void **state) {
 
 int main(void) {
   const struct CMUnitTest tests[] = {
-    cmocka_unit_test(test_ply_every_type),
-    cmocka_unit_test(test_mutations),
-    cmocka_unit_test(test_sphere_sections),
-    cmocka_unit_test(test_allocation_failures),
-    cmocka_unit_test(test_interrupt),
+      cmocka_unit_test(test_ply_every_type),  cmocka_unit_test(test_mutations),
+      cmocka_unit_test(test_sphere_sections), cmocka_unit_test(test_allocation_failures),
+      cmocka_unit_test(test_interrupt),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

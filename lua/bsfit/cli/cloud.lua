@@ -36,14 +36,17 @@ local function warn(fmt, ...) io.stderr:write("bsfit cloud: ", fmt:format(...), 
 local function number(s, what, min)
   local x = tonumber(s)
   if not x or x ~= x or x == math.huge or x == -math.huge or (min and not (x > min)) then
-    error(("%s must be a number%s, got '%s'"):format(what, min and (" > " .. min) or "", tostring(s)), 0)
+    local bound = min and (" > " .. min) or ""
+    error(("%s must be a number%s, got '%s'"):format(what, bound, tostring(s)), 0)
   end
   return x
 end
 
 local function count(s, what)
   local n = math.tointeger(tonumber(s))
-  if not n or n < 1 then error(("%s must be a positive integer, got '%s'"):format(what, tostring(s)), 0) end
+  if not n or n < 1 then
+    error(("%s must be a positive integer, got '%s'"):format(what, tostring(s)), 0)
+  end
   return n
 end
 
@@ -64,7 +67,9 @@ end
 local function formats(s)
   local known, f = { json = true, svg = true, csv = true, iges = true }, {}
   for name in tostring(s):gmatch("[^,]+") do
-    if not known[name] then error(("unknown format '%s' (json, svg, csv, iges)"):format(name), 0) end
+    if not known[name] then
+      error(("unknown format '%s' (json, svg, csv, iges)"):format(name), 0)
+    end
     f[name] = true
   end
   return f
@@ -81,7 +86,9 @@ local flags = {
   ["--cell"] = function(o, v) o.cell = number(v, "--cell", 0) end,
   ["--target"] = function(o, v) o.target = count(v, "--target") end,
   ["--order"] = function(o, v)
-    if v ~= "auto" and v ~= "angle" and v ~= "graph" then error("--order must be auto, angle or graph", 0) end
+    if v ~= "auto" and v ~= "angle" and v ~= "graph" then
+      error("--order must be auto, angle or graph", 0)
+    end
     o.order_method = v
   end,
   ["--strategy"] = function(o, v) o.strategy = v end,

@@ -25,7 +25,9 @@ local function summary(dir, result, ctx)
     input = result.input, kind = result.scan and result.scan.kind, strategy = ctx.strategy,
     degree = ctx.degree, sections = clean } .. "\n")
   local timing = {}
-  for i, t in ipairs(result.timing) do timing[i] = { slice = t.slice, ms = ("%.3f"):format(t.ms) } end
+  for i, t in ipairs(result.timing) do
+    timing[i] = { slice = t.slice, ms = ("%.3f"):format(t.ms) }
+  end
   report.must_write(dir .. "/timing.csv", report.csv({ "slice", "ms" }, timing))
 end
 
@@ -48,9 +50,12 @@ local function picture(result, samples)
   out[2] = '<rect width="800" height="800" fill="white"/>'
   for _, p in ipairs(paths) do
     local d = {}
-    for k, q in ipairs(p.pts) do d[k] = ("%.2f,%.2f"):format(20 + (q[1] - x0) * scale, 780 - (q[2] - y0) * scale) end
+    for k, q in ipairs(p.pts) do
+      d[k] = ("%.2f,%.2f"):format(20 + (q[1] - x0) * scale, 780 - (q[2] - y0) * scale)
+    end
     local hue = (p.slice * 47) % 360
-    out[#out + 1] = ('<polyline fill="none" stroke="hsl(%d,70%%,40%%)" stroke-width="1" points="%s"/>')
+    out[#out + 1] = ('<polyline fill="none" stroke="hsl(%d,70%%,40%%)" stroke-width="1" '
+                     .. 'points="%s"/>')
       :format(hue, table.concat(d, " "))
   end
   out[#out + 1] = "</svg>\n"

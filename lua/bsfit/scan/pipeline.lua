@@ -37,7 +37,9 @@ function M.context(opts)
   local is_step = {}
   for _, s in ipairs(M.steps) do is_step[s] = true end
   for k, v in pairs(opts or {}) do
-    if not is_step[k] and M.settings[k] == nil then error(("unknown option '%s'"):format(tostring(k)), 2) end
+    if not is_step[k] and M.settings[k] == nil then
+      error(("unknown option '%s'"):format(tostring(k)), 2)
+    end
     ctx[k] = v
   end
   for _, s in ipairs(M.steps) do
@@ -71,8 +73,8 @@ local function fit_loop(sl, ctx, loop, k, nloops, base_row)
   for key, val in pairs(base_row) do row[key] = val end
   row.loop, row.loops, row.name = k, nloops, loop_name(sl, k, nloops)
   row.points_reduced, row.closed = #loop.points, loop.closed
-  local lctx = setmetatable({ weights = loop_weights(base_row.w, loop.index), closed = loop.closed },
-                            { __index = ctx })
+  local lctx = { weights = loop_weights(base_row.w, loop.index), closed = loop.closed }
+  setmetatable(lctx, { __index = ctx })
   row.w = nil
   local ok, C, rep = pcall(ctx.fit, loop.points, lctx)
   if not ok then
@@ -117,13 +119,16 @@ function M.section(sl, ctx)
   local rows, curves = {}, {}
   local ok, loops = pcall(slice_loops, sl, ctx, base)
   if not ok then
-    base.status, base.message, base.loops, base.w = "error", tostring(loops):gsub("\n.*", ""), 0, nil
+    base.status, base.loops, base.w = "error", 0, nil
+    base.message = tostring(loops):gsub("\n.*", "")
     base.name = loop_name(sl, 1, 1)
     return { base }, curves, (clock() - t0) * 1000
   end
   for k, loop in ipairs(loops) do
     local row, C = fit_loop(sl, ctx, loop, k, #loops, base)
-    if base.order and base.order ~= "one closed loop" and row.message == "" then row.message = base.order end
+    if base.order and base.order ~= "one closed loop" and row.message == "" then
+      row.message = base.order -- several loops in one slab: say so
+    end
     rows[k] = row
     curves[row.name] = C
   end

@@ -76,7 +76,8 @@ function M.to3d(C, sl)
     w = {}
     for i = 1, n do w[i] = all[i] end
   end
-  return bs.curve.new { degree = p, knots = U, control_points = P3, weights = w, periodic = periodic }
+  return bs.curve.new { degree = p, knots = U, control_points = P3, weights = w,
+                        periodic = periodic }
 end
 
 function M.write(result, ctx)
