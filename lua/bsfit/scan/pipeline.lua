@@ -21,6 +21,11 @@ local M = {}
 
 M.steps = { "read", "slice", "reduce", "order", "fit", "to3d", "write" }
 
+-- The steps run on the whole result, in order, after every slice is done (each
+-- f(result, ctx)). Skinning the sections is one more: put "skin" in M.steps and here
+-- before "write", and give bsfit.scan.steps a skin(result, ctx) that sets result.surface.
+M.result_steps = { "write" }
+
 -- Settings and their defaults (nil: unset).
 M.settings = {
   format = "auto", axis = "z", slices = false, spacing = false, at = false, thickness = false,
@@ -240,7 +245,7 @@ function M.run(input, opts)
   local result = process(slices, ctx)
   result.input, result.scan, result.slices = input, scan, slices
   result.ms = (clock() - t0) * 1000
-  ctx.write(result, ctx)
+  for _, step in ipairs(M.result_steps) do ctx[step](result, ctx) end
   return result
 end
 
