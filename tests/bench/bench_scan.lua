@@ -83,6 +83,21 @@ t = best(1, function()
 end)
 print(("mesh, 100 slices, whole pipeline -j %d: %.3f s"):format(jobs, t))
 
+-- the same cloud as text: XYZ and ASCII PLY
+do
+  local S = assert(bs.scan.read(cloud)).points
+  local parts, hdr = {}, ("ply\nformat ascii 1.0\nelement vertex %d\nproperty float x\n"
+    .. "property float y\nproperty float z\nend_header\n"):format(#S)
+  for i = 1, #S do parts[i] = ("%.7g %.7g %.7g"):format(S:get(i)) end
+  local text = table.concat(parts, "\n") .. "\n"
+  local f = assert(io.open(DIR .. "/cloud.xyz", "wb")); f:write(text); f:close()
+  f = assert(io.open(DIR .. "/cloud_a.ply", "wb")); f:write(hdr, text); f:close()
+  t = best(3, function() assert(bs.scan.read(DIR .. "/cloud.xyz")) end)
+  print(("cloud 10^6 points, XYZ text: read %.3f s"):format(t))
+  t = best(3, function() assert(bs.scan.read(DIR .. "/cloud_a.ply")) end)
+  print(("cloud 10^6 points, ASCII PLY: read %.3f s"):format(t))
+end
+
 -- 10^7 vertices: the cloud file ten times over
 local big = DIR .. "/big.ply"
 write_cloud(big, 10 ^ 7)
