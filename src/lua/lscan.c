@@ -423,6 +423,10 @@ static int scan_slice(lua_State *L) {
   tol = opt_number(L, t, "tol", 0);
   luaL_argcheck(L, thick >= 0 && isfinite(thick), 2, "field 'thickness' must be > 0");
   luaL_argcheck(L, tol >= 0 && isfinite(tol), 2, "field 'tol' must be >= 0");
+  /* an option the scan cannot honour is an error, never silently ignored */
+  luaL_argcheck(L, s.tri == NULL || thick == 0, 2,
+                "field 'thickness' applies to clouds (a mesh is cut exactly)");
+  luaL_argcheck(L, s.tri != NULL || tol == 0, 2, "field 'tol' applies to meshes");
   e = bsfit_scan_extent(s.xyz, s.nv, d, &lo, &hi, &st);
   if (e != BSFIT_OK) return bsfit__lua_raise(L, e, &st, 1);
   n = push_positions(L, t, lo, hi, &gap);

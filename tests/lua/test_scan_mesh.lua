@@ -265,3 +265,20 @@ T.test("bad mesh files: truncated, malformed, out-of-range faces, NaN vertices",
   T.eq(#s.triangles, 2)
   T.eq(select(3, s.triangles:get(2)), 4)
 end)
+
+T.test("options a scan cannot honour are errors", function()
+  local C = cube(0, 1)
+  T.raises({ match = "'thickness' applies to clouds" }, function() bs.scan.slice(C, { slices = 2, thickness = 0.1 }) end)
+  T.raises({ match = "'tol' applies to meshes" }, function() bs.scan.slice(C.points, { slices = 2, tol = 0.1 }) end)
+  local pipeline = require "bsfit.scan.pipeline"
+  T.raises({ match = "cell and target reduce clouds" }, function()
+    pipeline.run("cube", { read = function() return C end, slices = 2, cell = 0.1 })
+  end)
+  -- a mesh through the pipeline: exact loops, fitted, mapped back to 3D
+  local res = pipeline.run("cube", { read = function() return C end, at = { 0.5 } })
+  T.eq(#res.rows, 1)
+  T.eq(res.rows[1].status, "ok", tostring(res.rows[1].message))
+  T.eq(res.rows[1].points_in, 8)
+  local x, y, z = res.curves3d[1]:eval(0.25)
+  T.near(z, 0.5, 1e-12)
+end)

@@ -241,6 +241,9 @@ function M.run(input, opts)
     os.execute("mkdir -p '" .. ctx.outdir:gsub("'", "'\\''") .. "'")
   end
   local scan = ctx.read(input, ctx)
+  if scan.triangles and (ctx.cell or ctx.target) then -- never silently ignored
+    error("cell and target reduce clouds; " .. tostring(input) .. " is a mesh, cut exactly", 0)
+  end
   local slices = ctx.slice(scan, ctx)
   local result = process(slices, ctx)
   result.input, result.scan, result.slices = input, scan, slices

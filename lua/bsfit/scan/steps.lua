@@ -30,8 +30,8 @@ end
 -- Default cell: the slab's thickness, so the mean of a cell averages across the slab
 -- and the ordering never sees its thickness.
 function M.reduce(P, ctx)
-  if ctx.target then return bs.scan.reduce(P, { target = ctx.target }) end
-  local R, w, cell = bs.scan.reduce(P, { cell = ctx.cell or ctx.slab_thickness })
+  local o = ctx.target and { target = ctx.target } or { cell = ctx.cell or ctx.slab_thickness }
+  local R, w, cell = bs.scan.reduce(P, o)
   if not R then error(w, 0) end
   return R, w, cell
 end
