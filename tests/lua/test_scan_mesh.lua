@@ -271,7 +271,7 @@ T.test("options a scan cannot honour are errors", function()
   T.raises({ match = "'thickness' applies to clouds" }, function() bs.scan.slice(C, { slices = 2, thickness = 0.1 }) end)
   T.raises({ match = "'tol' applies to meshes" }, function() bs.scan.slice(C.points, { slices = 2, tol = 0.1 }) end)
   local pipeline = require "bsfit.scan.pipeline"
-  T.raises({ match = "cell and target reduce clouds" }, function()
+  T.raises({ match = "cell and target %(reduction%) apply to clouds" }, function()
     pipeline.run("cube", { read = function() return C end, slices = 2, cell = 0.1 })
   end)
   -- a mesh through the pipeline: exact loops, fitted, mapped back to 3D

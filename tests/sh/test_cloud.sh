@@ -128,9 +128,9 @@ check "no slicing option: said" grep -q 'exactly one of --slices, --spacing, --a
 check "--cell and --target: exit 2" test $? -eq 2
 "$BSFIT" cloud "$TMP/vase.stl" -o "$TMP/bad" --slices 3 --thickness 0.1 2> "$TMP/err6"
 check "--thickness on a mesh: exit 2" test $? -eq 2
-check "--thickness on a mesh: said" grep -q "'thickness' applies to clouds" "$TMP/err6"
+check "--thickness on a mesh: said" grep -q "thickness (slabs) apply to clouds; .*vase.stl is a mesh" "$TMP/err6"
 "$BSFIT" cloud "$TMP/vase.stl" -o "$TMP/bad" --slices 3 --cell 0.1 2> "$TMP/err7"
-check "--cell on a mesh: exit 2 with a reason" grep -q "cell and target reduce clouds" "$TMP/err7"
+check "--cell on a mesh: exit 2 with a reason" grep -q "cell and target (reduction) apply to clouds" "$TMP/err7"
 "$BSFIT" cloud --help > "$TMP/help"
 check "--help prints the usage" grep -q 'usage: bsfit cloud' "$TMP/help"
 

@@ -241,8 +241,12 @@ function M.run(input, opts)
     os.execute("mkdir -p '" .. ctx.outdir:gsub("'", "'\\''") .. "'")
   end
   local scan = ctx.read(input, ctx)
-  if scan.triangles and (ctx.cell or ctx.target) then -- never silently ignored
-    error("cell and target reduce clouds; " .. tostring(input) .. " is a mesh, cut exactly", 0)
+  -- options the scan cannot honour are errors, never silently ignored
+  if scan.triangles and (ctx.cell or ctx.target or ctx.thickness) then
+    error(("%s apply to clouds; %s is a mesh, cut exactly"):format(
+      ctx.thickness and "thickness (slabs)" or "cell and target (reduction)", tostring(input)), 0)
+  elseif not scan.triangles and ctx.tol then
+    error(("tol applies to meshes; %s is a cloud"):format(tostring(input)), 0)
   end
   local slices = ctx.slice(scan, ctx)
   local result = process(slices, ctx)
