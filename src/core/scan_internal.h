@@ -2,7 +2,7 @@
 ** scan_internal.h
 ** Helpers shared by the scan files of src/core (io_scan_*.c, scan_*.c): a builder that
 ** collects vertices and triangles while a reader parses, a cursor over text for the
-** ASCII readers, and the grid / neighbour search the reduction and the ordering share.
+** ASCII readers, and the k-d tree the ordering's neighbour search uses.
 */
 #ifndef BSFIT_SCAN_INTERNAL_H
 #define BSFIT_SCAN_INTERNAL_H
@@ -72,26 +72,24 @@ bsfit_err bsfit__scan_obj(const char *data, size_t len, bsfit__scanbuild *b, bsf
 /* }====================================================================== */
 
 /* {======================================================================
-** A uniform grid over 2D points for neighbour queries (scan_grid.c)
+** A 2D k-d tree for neighbour queries (scan_kdtree.c)
 ** ====================================================================== */
 
-typedef struct bsfit__grid {
+typedef struct bsfit__kdtree {
   const double *xy;
   size_t m;
-  double x0, y0, h; /* origin and cell size */
-  size_t nx, ny;
-  size_t *cell_start; /* nx*ny + 1 */
-  size_t *items;      /* m point indices, grouped by cell */
+  size_t *perm;       /* point indices, arranged as the implicit tree */
+  double *split;      /* split value of the node whose mid is the index */
+  unsigned char *dim; /* its split axis */
   const bsfit_allocator *a;
-} bsfit__grid;
+} bsfit__kdtree;
 
-/* Builds a grid of about 2 points per cell. */
-bsfit_err bsfit__grid_build(bsfit__grid *g, const double *xy, size_t m, const bsfit_allocator *a,
-                            bsfit_status *st);
-void bsfit__grid_free(bsfit__grid *g);
+bsfit_err bsfit__kdtree_build(bsfit__kdtree *t, const double *xy, size_t m,
+                              const bsfit_allocator *a, bsfit_status *st);
+void bsfit__kdtree_free(bsfit__kdtree *t);
 /* The k nearest other points of point i: idx[0..k-1] (nearest first) and their distances
 ** d[0..k-1]; returns how many were found (< k only when m-1 < k). */
-size_t bsfit__grid_knn(const bsfit__grid *g, size_t i, size_t k, size_t *idx, double *d);
+size_t bsfit__kdtree_knn(const bsfit__kdtree *t, size_t i, size_t k, size_t *idx, double *d);
 
 /* }====================================================================== */
 

@@ -38,24 +38,24 @@ void bsfit_order_result_free(bsfit_order_result *r) {
 ** ====================================================================== */
 
 static bsfit_err neighbours(bsfit__ordwork *w, bsfit_status *st) {
-  bsfit__grid g;
+  bsfit__kdtree g;
   size_t i, q, n;
   double *tmp, med;
-  bsfit_err e = bsfit__grid_build(&g, w->xy, w->m, w->a, st);
+  bsfit_err e = bsfit__kdtree_build(&g, w->xy, w->m, w->a, st);
   if (e != BSFIT_OK) return e;
   for (i = 0; i < w->m; i++) {
     if ((i & 0xfff) == 0 && bsfit__interrupted(w->a)) {
-      bsfit__grid_free(&g);
+      bsfit__kdtree_free(&g);
       return bsfit__fail(st, BSFIT_EINTR, "ordering interrupted");
     }
-    n = bsfit__grid_knn(&g, i, w->k, w->nbr + i * w->k, w->nd + i * w->k);
+    n = bsfit__kdtree_knn(&g, i, w->k, w->nbr + i * w->k, w->nd + i * w->k);
     for (q = n; q < w->k; q++) {
       w->nbr[i * w->k + q] = BSFIT__NONE;
       w->nd[i * w->k + q] = HUGE_VAL;
     }
     w->spacing[i] = n >= 2 ? w->nd[i * w->k + 1] : n == 1 ? w->nd[i * w->k] : 0;
   }
-  bsfit__grid_free(&g);
+  bsfit__kdtree_free(&g);
   /* repeated or clustered points would give a zero spacing: floor it at a quarter of
   ** the median, so a step is only judged against spacings the section really has */
   tmp = bsfit__alloc(w->a, w->m * sizeof(double));
