@@ -166,10 +166,50 @@ size_t bsfit__cur_token(bsfit__cursor *c, char *buf, size_t cap) {
   return n;
 }
 
+/* Clinger's fast path: a decimal of at most 15 significant digits times 10^e, |e| <= 22,
+** is one exact integer times (or over) one exact power of ten, so a single rounding gives
+** the correctly rounded double, as strtod would. Returns 0 when the token is not of that
+** simple form (then strtod decides). */
+static int fast_number(const char *s, double *x) {
+  static const double p10[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
+                               1e8,  1e9,  1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
+                               1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
+  uint64_t mant = 0;
+  int neg = 0, digits = 0, any = 0, e = 0, ee = 0, eneg = 0;
+  if (*s == '-' || *s == '+') neg = *s++ == '-';
+  for (; *s >= '0' && *s <= '9'; s++, any = 1) {
+    if (mant == 0 && *s == '0') continue; /* leading zeros are not significant */
+    if (++digits > 15) return 0;
+    mant = mant * 10 + (uint64_t)(*s - '0');
+  }
+  if (*s == '.') {
+    for (s++; *s >= '0' && *s <= '9'; s++, any = 1) {
+      e--;
+      if (mant == 0 && *s == '0') continue;
+      if (++digits > 15) return 0;
+      mant = mant * 10 + (uint64_t)(*s - '0');
+    }
+  }
+  if (!any) return 0;
+  if (*s == 'e' || *s == 'E') {
+    s++;
+    if (*s == '-' || *s == '+') eneg = *s++ == '-';
+    if (!(*s >= '0' && *s <= '9')) return 0;
+    for (; *s >= '0' && *s <= '9'; s++)
+      if ((ee = ee * 10 + (*s - '0')) > 400) return 0;
+    e += eneg ? -ee : ee;
+  }
+  if (*s != '\0' || e < -22 || e > 22) return 0;
+  *x = e < 0 ? (double)mant / p10[-e] : (double)mant * p10[e];
+  if (neg) *x = -*x;
+  return 1;
+}
+
 int bsfit__cur_number(bsfit__cursor *c, double *x) {
   char buf[80], *end;
   size_t n = bsfit__cur_token(c, buf, sizeof buf);
   if (n == 0 || n == (size_t)-1) return 0;
+  if (fast_number(buf, x)) return 1;
   *x = strtod(buf, &end);
   return *end == '\0';
 }

@@ -101,6 +101,59 @@ static void test_ply_every_type(void **state) {
   }
 }
 
+/* Numbers of every textual form read as strtod reads them, bit for bit (the ASCII readers
+** have a fast path for short decimals). */
+static void test_ascii_numbers(void **state) {
+  static const char *fixed[] = {"-0",
+                                "0",
+                                "1.",
+                                ".5",
+                                "+3",
+                                "00012.50",
+                                "1e5",
+                                "1E-7",
+                                "-2.5e+3",
+                                "123456789012345",
+                                "1234567890123456",
+                                "0.1",
+                                "0.3",
+                                "1e22",
+                                "1e23",
+                                "9007199254740993",
+                                "4.9e-324",
+                                "1.7976931348623157e308",
+                                "0.000000000000000000000000000123",
+                                "2.2250738585072014e-308"};
+  static const char *fmts[] = {"%.17g", "%.6f", "%g", "%.3e", "%.15g", "%.0f", "%.9g"};
+  test_rng r = {77};
+  char text[200000];
+  size_t len = 0, nv = 0, i;
+  bsfit_scan s;
+  bsfit_status st;
+  (void)state;
+  for (i = 0; i < sizeof fixed / sizeof fixed[0]; i++)
+    len += (size_t)snprintf(text + len, sizeof text - len, "v %s 0 0\n", fixed[i]), nv++;
+  for (i = 0; i < 3000; i++) {
+    double v = (rng_uniform(&r) - 0.5) * pow(10, rng_range(&r, -30, 30));
+    char num[64];
+    snprintf(num, sizeof num, fmts[i % 7], v);
+    len += (size_t)snprintf(text + len, sizeof text - len, "v %s 1 2\n", num), nv++;
+  }
+  bsfit_scan_init(&s);
+  assert_int_equal(bsfit_scan_parse(text, len, BSFIT_SCAN_OBJ, "n.obj", &s, NULL, &st), BSFIT_OK);
+  assert_int_equal(s.nv, nv);
+  {
+    const char *p = text;
+    for (i = 0; i < nv; i++) {
+      char *end;
+      double want = strtod(p + 2, &end);
+      assert_memory_equal(&s.xyz[3 * i], &want, sizeof want);
+      p = strchr(p, '\n') + 1;
+    }
+  }
+  bsfit_scan_free(&s);
+}
+
 /* }==================================================================== */
 
 /* {====================================================================
@@ -378,9 +431,9 @@ static void test_interrupt(void **state) {
 
 int main(void) {
   const struct CMUnitTest tests[] = {
-      cmocka_unit_test(test_ply_every_type),  cmocka_unit_test(test_mutations),
-      cmocka_unit_test(test_sphere_sections), cmocka_unit_test(test_allocation_failures),
-      cmocka_unit_test(test_interrupt),
+      cmocka_unit_test(test_ply_every_type),      cmocka_unit_test(test_ascii_numbers),
+      cmocka_unit_test(test_mutations),           cmocka_unit_test(test_sphere_sections),
+      cmocka_unit_test(test_allocation_failures), cmocka_unit_test(test_interrupt),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
