@@ -78,6 +78,7 @@ local function fit_loop(sl, ctx, loop, k, nloops, base_row)
   for key, val in pairs(base_row) do row[key] = val end
   row.loop, row.loops, row.name = k, nloops, loop_name(sl, k, nloops)
   row.points_reduced, row.closed = #loop.points, loop.closed
+  row.points_in = row.points_in or #loop.points -- a mesh's loop is its own input
   local lctx = { weights = loop_weights(base_row.w, loop.index), closed = loop.closed }
   setmetatable(lctx, { __index = ctx })
   row.w = nil
@@ -101,8 +102,6 @@ local function slice_loops(sl, ctx, row)
   if sl.loops then
     local loops = {}
     for k, P in ipairs(sl.loops) do loops[k] = { points = P, closed = sl.closed[k] } end
-    row.points_in = 0
-    for _, P in ipairs(sl.loops) do row.points_in = row.points_in + #P end
     if #loops == 0 then error("the plane does not cut the mesh", 0) end
     return loops
   end
