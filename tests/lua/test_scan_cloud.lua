@@ -321,3 +321,43 @@ T.test("cloud pipeline: empty slabs, two loops, bad options; the other slices st
 end)
 
 -- }======================================================================
+
+T.test("cloud slabs along any direction: projected points on the exact circles of a sphere", function()
+  local r = synth.rng(31)
+  for trial = 1, 8 do
+    local c = { 10 * r.uniform() - 5, 10 * r.uniform() - 5, 10 * r.uniform() - 5 }
+    local R = 1 + 3 * r.uniform()
+    local P = {}
+    for i = 1, 20000 do
+      local x, y, z = r.normal(), r.normal(), r.normal()
+      local n = math.sqrt(x * x + y * y + z * z)
+      P[i] = { c[1] + R * x / n, c[2] + R * y / n, c[3] + R * z / n }
+    end
+    local d = { r.uniform() - 0.5, r.uniform() - 0.5, r.uniform() - 0.5 }
+    local len = math.sqrt(d[1] ^ 2 + d[2] ^ 2 + d[3] ^ 2)
+    local n = { d[1] / len, d[2] / len, d[3] / len }
+    local h0 = n[1] * c[1] + n[2] * c[2] + n[3] * c[3]
+    local T0 = 0.01
+    local at = { h0 - 0.5 * R, h0, h0 + 0.7 * R }
+    local S = bs.scan.slice(bs.points.new(P), { direction = d, at = at, thickness = T0 })
+    for k, s in ipairs(S) do
+      T.near(s.position, at[k], 1e-12)
+      local off = at[k] - h0
+      local rho = math.sqrt(R * R - off * off)
+      -- the circle's centre in the slice's frame
+      local q = { c[1] - s.origin[1], c[2] - s.origin[2], c[3] - s.origin[3] }
+      local cu = q[1] * s.u[1] + q[2] * s.u[2] + q[3] * s.u[3]
+      local cv = q[1] * s.v[1] + q[2] * s.v[2] + q[3] * s.v[3]
+      -- within the slab the radius varies by at most |d rho / d h| * T0/2
+      local slack = (math.abs(off) + T0) / math.sqrt(math.max(R * R - (math.abs(off) + T0) ^ 2, 1e-12)) * T0 / 2
+      T.ok(#s.points > 10, "slab populated")
+      local worst = 0
+      for i = 1, #s.points do
+        local u, v = s.points:get(i)
+        worst = math.max(worst, math.abs(math.sqrt((u - cu) ^ 2 + (v - cv) ^ 2) - rho))
+      end
+      T.ok(worst <= slack + 1e-9, ("trial %d slice %d: %.3g off the circle (slack %.3g)"):format(trial, k, worst, slack))
+      T.near(s.normal[1], n[1], 1e-12); T.near(s.normal[2], n[2], 1e-12); T.near(s.normal[3], n[3], 1e-12)
+    end
+  end
+end)
