@@ -245,7 +245,8 @@ function M.write_ply(mesh, path, format)
   f:close()
 end
 
-function M.write_stl(mesh, path, ascii)
+-- header: the 80-byte header of a binary file (some exporters start it with "solid").
+function M.write_stl(mesh, path, ascii, header)
   local f = open(path)
   local V = mesh.V
   if ascii then
@@ -261,7 +262,8 @@ function M.write_stl(mesh, path, ascii)
     end
     f:write("endsolid synth\n")
   else
-    local parts = { ("bsfit synthetic"):rep(1) .. (" "):rep(80 - 15), string.pack("<I4", #mesh.F) }
+    local h = header or "bsfit synthetic"
+    local parts = { h .. (" "):rep(80 - #h), string.pack("<I4", #mesh.F) }
     for _, t in ipairs(mesh.F) do
       local a, b, c = V[t[1]], V[t[2]], V[t[3]]
       parts[#parts + 1] = string.pack("<fff fff fff fff I2", 0, 0, 0, a[1], a[2], a[3], b[1], b[2], b[3],

@@ -59,6 +59,14 @@ T.test("every mesh format reads back the same vertices and triangles", function(
   end
 end)
 
+T.test("a binary STL whose header starts with 'solid' is read as binary", function()
+  local m = synth.mesh(synth.shapes.vase(), { around = 12, rings = 3 })
+  synth.write_stl(m, DIR .. "/solid_header.stl", false, "solid exported by some CAD program")
+  local s = assert(bs.scan.read(DIR .. "/solid_header.stl"))
+  T.eq(#s.triangles, #m.F)
+  T.eq(#s.points, #m.V)
+end)
+
 T.test("mesh sections lie within the tessellation error of the true sections", function()
   local r = synth.rng(11)
   local cases = { { "vase", 48, 30 }, { "bottle", 64, 28 }, { "wing", 80, 10 }, { "box", 72, 8 },
