@@ -148,30 +148,36 @@ end
 local plain = { "format", "axis", "cell", "target", "order_method", "strategy", "degree", "count",
                 "samples", "formats", "outdir" }
 
+-- A slice as one string: its settings and frame as a Lua literal, then its points as raw
+-- doubles (P:bytes()), each length-prefixed; escaping megabytes of doubles into a literal
+-- and parsing them back would cost more than the fits.
 local function pack_slice(sl, ctx)
-  local s = { index = sl.index, position = sl.position, thickness = sl.thickness, settings = {} }
+  local s = { index = sl.index, position = sl.position, thickness = sl.thickness, settings = {},
+              closed = sl.closed, mesh = sl.loops ~= nil }
   for _, k in ipairs(plain) do s.settings[k] = ctx[k] end
-  if sl.loops then
-    s.loops, s.closed = {}, sl.closed
-    for k, P in ipairs(sl.loops) do s.loops[k] = P:bytes() end
-  else
-    s.points = sl.points:bytes()
+  local parts = sl.loops or { sl.points }
+  local out = { string.pack("<s4I4", report.serialize(s), #parts) }
+  for k, P in ipairs(parts) do out[k + 1] = string.pack("<s4", P:bytes()) end
+  return table.concat(out)
+end
+
+local function unpack_slice(item)
+  local meta, n, pos = string.unpack("<s4I4", item)
+  local s = report.deserialize(meta)
+  local sl, parts = { index = s.index, position = s.position, thickness = s.thickness }, {}
+  for k = 1, n do
+    local b
+    b, pos = string.unpack("<s4", item, pos)
+    parts[k] = bs.points.frombytes(b, 2)
   end
-  return report.serialize(s)
+  if s.mesh then sl.loops, sl.closed = parts, s.closed else sl.points = parts[1] end
+  return sl, s.settings
 end
 
 -- The worker entry: a packed slice in, its rows and curves (JSON) out.
 function M.section_serialized(item)
-  local s = report.deserialize(item)
-  local ctx = M.context(s.settings)
-  local sl = { index = s.index, position = s.position, thickness = s.thickness }
-  if s.loops then
-    sl.loops, sl.closed = {}, s.closed
-    for k, b in ipairs(s.loops) do sl.loops[k] = bs.points.frombytes(b, 2) end
-  else
-    sl.points = bs.points.frombytes(s.points, 2)
-  end
-  local rows, curves, ms = M.section(sl, ctx)
+  local sl, settings = unpack_slice(item)
+  local rows, curves, ms = M.section(sl, M.context(settings))
   local json = {}
   for name, C in pairs(curves) do json[name] = C:to_json() end
   return report.serialize { rows = rows, curves = json, ms = ms }
