@@ -1,0 +1,84 @@
+-- lua/bsfit/scan/output.lua
+-- The run's files of the scan pipeline (its `write` step): summary.csv and
+-- summary.json (one row per loop, or per failed slice), timing.csv (milliseconds only
+-- there, so the other files do not depend on -j), sections.iges (every fitted loop as
+-- a 3D entity 126, in slice order) and sections.svg (the loops in their planes, one
+-- colour per slice), and when the sections make one surface, surface.json, surface.iges
+-- (entity 128) and surface.obj (a closed triangle mesh). Every file is written atomically.
+
+local bs = require "bsfit"
+local report = require "bsfit.report"
+
+local M = {}
+
+M.columns = { "slice", "position", "loop", "loops", "closed", "points_in", "cell", "points_reduced",
+              "control_points", "rms", "max", "status", "message", "name" }
+
+local function summary(dir, result, ctx)
+  report.must_write(dir .. "/summary.csv", report.csv(M.columns, result.rows))
+  local clean = {}
+  for i, r in ipairs(result.rows) do
+    local c = {}
+    for _, k in ipairs(M.columns) do c[k] = r[k] end
+    clean[i] = c
+  end
+  report.must_write(dir .. "/summary.json", report.json {
+    input = result.input, kind = result.scan and result.scan.kind, strategy = ctx.strategy,
+    degree = ctx.degree, sections = clean, surface = result.surface ~= nil,
+    surface_message = result.surface_message } .. "\n")
+  local timing = {}
+  for i, t in ipairs(result.timing) do
+    timing[i] = { slice = t.slice, ms = ("%.3f"):format(t.ms) }
+  end
+  report.must_write(dir .. "/timing.csv", report.csv({ "slice", "ms" }, timing))
+end
+
+-- The loops drawn in their planes' (u, v) coordinates, overlaid.
+local function picture(result, samples)
+  local paths, x0, y0, x1, y1 = {}, math.huge, math.huge, -math.huge, -math.huge
+  for i, c in ipairs(result.curves) do
+    local S = c.curve:sample(samples)
+    local pts = {}
+    for k = 1, #S do
+      local x, y = S:get(k)
+      pts[k] = { x, y }
+      x0, y0, x1, y1 = math.min(x0, x), math.min(y0, y), math.max(x1, x), math.max(y1, y)
+    end
+    paths[i] = { pts = pts, slice = c.slice.index }
+  end
+  local size = math.max(x1 - x0, y1 - y0, 1e-300)
+  local scale, out = 760 / size, {}
+  out[1] = '<svg xmlns="http://www.w3.org/2000/svg" width="800" height="800" viewBox="0 0 800 800">'
+  out[2] = '<rect width="800" height="800" fill="white"/>'
+  for _, p in ipairs(paths) do
+    local d = {}
+    for k, q in ipairs(p.pts) do
+      d[k] = ("%.2f,%.2f"):format(20 + (q[1] - x0) * scale, 780 - (q[2] - y0) * scale)
+    end
+    local hue = (p.slice * 47) % 360
+    out[#out + 1] = ('<polyline fill="none" stroke="hsl(%d,70%%,40%%)" stroke-width="1" '
+                     .. 'points="%s"/>')
+      :format(hue, table.concat(d, " "))
+  end
+  out[#out + 1] = "</svg>\n"
+  return table.concat(out, "\n")
+end
+
+function M.write(result, ctx)
+  local dir = ctx.outdir
+  if not dir then return end
+  summary(dir, result, ctx)
+  if #result.curves3d > 0 then
+    local ok, err = bs.scan.write_iges(dir .. "/sections.iges", result.curves3d)
+    if not ok then error("cannot write " .. dir .. "/sections.iges: " .. tostring(err), 0) end
+    report.must_write(dir .. "/sections.svg", picture(result, 200))
+  end
+  if result.surface then -- the skinned surface: JSON, IGES 128, a triangle mesh
+    for _, ext in ipairs { "json", "iges", "obj" } do
+      local ok, err = result.surface:write(dir .. "/surface." .. ext)
+      if not ok then error("cannot write " .. dir .. "/surface." .. ext .. ": " .. tostring(err), 0) end
+    end
+  end
+end
+
+return M
