@@ -203,6 +203,7 @@ void bsfit__lua_lib_filter(lua_State *L);
 void bsfit__lua_lib_surface(lua_State *L);
 void bsfit__lua_lib_svg(lua_State *L);
 void bsfit__lua_lib_auto(lua_State *L); /* lauto.c (automatic strategy): after knots */
+void bsfit__lua_lib_features(lua_State *L); /* lfeatures.c: after geom and curve */
 void bsfit_lua_open_fitter(lua_State *L);
 void bsfit_lua_open_surface(lua_State *L);
 void bsfit_lua_open_svg(lua_State *L);

@@ -40,6 +40,7 @@
 
 local bs = require "bsfit"
 local common = require "bsfit.strategy.common"
+local sharp = require "bsfit.strategy.sharp"
 
 local M = { name = "auto" }
 
@@ -47,7 +48,8 @@ M.settings = { degree = 3, param = "chord", closed = true, trust = 0.1, correct 
                robust = false, huber = 1.345, solver = "auto" }
 M.optional = { point_weights = true, tol = true, count_max = true }
 
-M.order = { "sigma", "params", "weights", "corners", "count", "fit", "reweight", "measure" }
+M.order = { "sigma", "segment", "params", "weights", "corners", "count", "fit", "assemble",
+            "reweight", "measure" }
 
 local steps = {}
 M.steps = steps
@@ -63,6 +65,15 @@ local function as_table(v)
 end
 
 local function closed(ctx) return common.closed(ctx) end
+
+-- Is the section made into one curve of lines, arcs and free runs (the segment step
+-- found features), rather than fitted as one smooth curve? Not when a step it would
+-- bypass was replaced or a count or tolerance was asked for.
+local function sharp_path(ctx)
+  local o = ctx.opts
+  return type(ctx.segment) == "table" and #ctx.segment > 0 and o.count == nil and
+         o.corners == nil and o.fit == nil and ctx.settings.tol == nil
+end
 
 local knots_on_anchors
 
@@ -492,7 +503,19 @@ end
 -- Steps
 -- =======================================================================
 
+-- Lines, arcs and free runs (bs.geom.segment), when the data is exact on lines and arcs:
+-- runs of 3 samples collinear, or 4 concyclic, to 1e-10 of the size, holding half the
+-- samples, do not happen by chance under noise. Returns the pieces, or {} (one smooth
+-- curve).
+function steps.segment(P, ctx)
+  if P:dim() ~= 2 or #P < 6 then return {} end
+  local pieces = bs.geom.segment(P, { closed = closed(ctx) })
+  if not (pieces and sharp.has_features(pieces, #P)) then return {} end
+  return pieces
+end
+
 function steps.params(P, ctx)
+  if sharp_path(ctx) then return bs.params(P, ctx.settings.param, { closed = closed(ctx) }) end
   local u = anchor_params(P, ctx)
   if u then return u end
   return common.ok("params", bs.params_trusted(P, ctx.settings.param, {
@@ -514,6 +537,7 @@ function steps.weights(P, ctx)
 end
 
 function steps.corners(P, ctx)
+  if sharp_path(ctx) then return sharp.corner_samples(P, ctx.segment) end
   if not closed(ctx) or #P < 12 then knots_on_anchors(ctx); return {} end
   local o = { closed = true }
   if ctx.sigma > 0 then o.sigma = ctx.sigma end
@@ -610,6 +634,7 @@ local function size_of(P)
 end
 
 function steps.count(P, ctx)
+  if sharp_path(ctx) then return 0 end -- the assemble step's
   local m = #P
   local n, nmax = count_range(P, ctx)
   local tol, sigma = ctx.settings.tol, ctx.sigma
@@ -650,6 +675,7 @@ end
 
 -- Final fit: the count found, `correct` rounds of parameter correction.
 function steps.fit(P, ctx)
+  if sharp_path(ctx) then return false end -- the assemble step's
   -- on large sections one correction round does nearly all the good (and each costs a
   -- projection of every point)
   local rounds = ctx.settings.correct
@@ -659,10 +685,21 @@ function steps.fit(P, ctx)
   return C
 end
 
+-- The one curve of the pieces (bsfit.strategy.sharp): exact lines and arcs, free runs
+-- fitted between them, joined; false when the section is fitted as one smooth curve.
+function steps.assemble(P, ctx)
+  if not sharp_path(ctx) then return false end
+  local pw = ctx.settings.point_weights
+  local C = sharp.assemble(P, ctx.segment, { closed = closed(ctx), sigma = 0,
+                                             weights = pw and as_table(pw) or nil })
+  ctx.count = C:distinct()
+  return C
+end
+
 -- Optional Huber reweighting: points farther than huber x sigma from the curve get
 -- weight w c/|d|; three rounds.
 function steps.reweight(P, ctx)
-  if not ctx.settings.robust then return ctx.curve end
+  if not ctx.settings.robust or sharp_path(ctx) then return ctx.curve end
   local c = ctx.settings.huber * math.max(ctx.sigma, 1e-12)
   local base = ctx.weights:totable()
   local C, u, d = ctx.curve, ctx.params_final, ctx.distances
@@ -679,6 +716,7 @@ function steps.reweight(P, ctx)
 end
 
 function steps.measure(P, ctx)
+  if sharp_path(ctx) then return common.measure(P, ctx) end
   local d = ctx.distances -- the fit's last projection, when it is of this very curve
   if ctx.distances_of ~= ctx.curve or d == nil then
     d = select(2, ctx.curve:project(P, ctx.params_final or ctx.params, NEWTON))
@@ -698,6 +736,8 @@ function M.report(ctx)
   rep.sigma = ctx.sigma
   rep.corners = ctx.corners
   rep.tries = ctx.tries
+  rep.closed = closed(ctx)
+  if sharp_path(ctx) then rep.pieces = ctx.segment end
   return rep
 end
 

@@ -1,0 +1,561 @@
+/*
+** segment.c
+** Segmentation of an ordered 2D section into straight lines, circular arcs and
+** free-form runs (bsfit_features.h): the maximal runs each model explains, the cover
+** of least cost (dynamic programming), and where consecutive pieces meet.
+*/
+#include "features_internal.h"
+
+#include <math.h>
+#include <string.h>
+
+#define PI 3.14159265358979323846
+
+#define LINE BSFIT_PIECE_LINE
+#define ARC BSFIT_PIECE_ARC
+#define FREE BSFIT_PIECE_FREE
+
+/* what the segmentation works on */
+typedef struct section {
+  const double *pts;
+  size_t m;
+  int closed;
+  double tol;      /* a sample fits a model within tol */
+  size_t min_len[2];
+  size_t *gaps;    /* gaps[i]: how many of the steps j -> j+1, j < i (unwrapped, i <= 2m),
+                      are longer than tol: a model needs that many distinct samples */
+  const bsfit_allocator *a;
+} section;
+
+/* distinct samples (steps longer than tol, plus one) among n from first */
+static size_t distinct(const struct section *s, size_t first, size_t n) {
+  return s->gaps[first + n - 1] - s->gaps[first] + 1;
+}
+
+/* a model of either kind */
+typedef struct model {
+  int kind;
+  bsfit__line line;
+  bsfit__circle circle;
+  double orient; /* arcs: +1 counter-clockwise along the samples, -1 clockwise */
+} model;
+
+static const double *sample(const section *s, size_t i) { return s->pts + 2 * (i % s->m); }
+
+static bsfit__run run_of(const section *s, size_t first, size_t n) {
+  bsfit__run r;
+  r.pts = s->pts;
+  r.m = s->m;
+  r.first = first % s->m;
+  r.n = n;
+  return r;
+}
+
+/* fits a model of `kind` to n samples from `first`; its largest distance (HUGE_VAL
+** when it cannot be fitted) */
+static double fit_model(const section *s, int kind, size_t first, size_t n, model *md,
+                        double *rms) {
+  bsfit__run r = run_of(s, first, n);
+  double turn = 0;
+  size_t k;
+  md->kind = kind;
+  if (kind == LINE) {
+    if (!bsfit__fit_line(&r, &md->line)) return HUGE_VAL;
+    return bsfit__line_max(&md->line, &r, rms);
+  }
+  if (!bsfit__fit_circle(&r, &md->circle)) return HUGE_VAL;
+  /* the direction the samples go round the centre */
+  for (k = 0; k + 1 < n; k++) {
+    const double *p = bsfit__run_at(&r, k), *q = bsfit__run_at(&r, k + 1);
+    double ax = p[0] - md->circle.c[0], ay = p[1] - md->circle.c[1];
+    double bx = q[0] - md->circle.c[0], by = q[1] - md->circle.c[1];
+    turn += atan2(ax * by - ay * bx, ax * bx + ay * by);
+  }
+  md->orient = turn >= 0 ? 1.0 : -1.0;
+  return bsfit__circle_max(&md->circle, &r, rms);
+}
+
+static double model_dist(const model *md, const double *x) {
+  return md->kind == LINE ? bsfit__line_dist(&md->line, x) : bsfit__circle_dist(&md->circle, x);
+}
+
+/* {====================================================================
+** Maximal runs
+** ===================================================================== */
+
+/* len[i] = the most samples from i that one model of `kind` explains within tol (0
+** when fewer than its minimum). Two pointers: a run from i+1 is at least the run from
+** i less one sample, so each start resumes where the previous stopped; a sample that
+** the current model misses triggers one refit before the run ends. O(m r). */
+static bsfit_err maximal_runs(const section *s, int kind, size_t *len) {
+  size_t i, prev = 0, nstart = s->closed ? s->m : s->m, minl = s->min_len[kind];
+  model md;
+  for (i = 0; i < nstart; i++) {
+    size_t limit = s->closed ? s->m : s->m - i;
+    size_t n = prev > minl ? prev - 1 : minl;
+    if ((i & 255) == 0 && bsfit__interrupted(s->a)) return BSFIT_EINTR;
+    len[i] = 0;
+    if (n > limit || minl > limit) { prev = 0; continue; }
+    if (fit_model(s, kind, i, n, &md, NULL) > s->tol) {
+      n = minl;
+      if (fit_model(s, kind, i, n, &md, NULL) > s->tol) { prev = 0; continue; }
+    }
+    while (n < limit) {
+      model next;
+      if (model_dist(&md, sample(s, i + n)) <= s->tol) { n++; continue; }
+      if (fit_model(s, kind, i, n + 1, &next, NULL) > s->tol) break;
+      md = next;
+      n++;
+    }
+    /* the last samples were judged by an older model: confirm the whole run */
+    while (n > minl && fit_model(s, kind, i, n, &md, NULL) > s->tol) n--;
+    len[i] = distinct(s, i, n) >= minl ? n : 0;
+    prev = n;
+  }
+  return BSFIT_OK;
+}
+
+/* }==================================================================== */
+
+/* {====================================================================
+** The cover of least cost
+** ===================================================================== */
+
+/* DP state: the cheapest cover of offsets [0, j] whose last piece ends at j */
+typedef struct cell {
+  double cost;
+  size_t start;  /* offset of the last piece's first sample */
+  int kind;
+  int shared;    /* the piece before ends at `start` too (a sampled corner) */
+  int prev_free; /* the piece before is free */
+} cell;
+
+static const double COST[3] = {2.0, 3.0, 0.0}; /* per piece: a line's parameters, an arc's */
+
+/* best primitive piece ending at offset j (into *c); prim/fr are the two DP arrays */
+static void best_primitive(const section *s, size_t origin, size_t j, size_t *const len[2],
+                           const size_t rmax[2], const cell *prim, const cell *fr, cell *c) {
+  int kind;
+  c->cost = HUGE_VAL;
+  for (kind = LINE; kind <= ARC; kind++) {
+    size_t n, minl = s->min_len[kind];
+    for (n = minl; n <= j + 1 && n <= rmax[kind]; n++) {
+      size_t a = j + 1 - n;
+      double before = 0;
+      int shared = 0, pf = 0;
+      if (len[kind][(origin + a) % s->m] < n || distinct(s, (origin + a) % s->m, n) < minl) continue;
+      if (a > 0) {
+        before = prim[a - 1].cost;
+        if (fr[a - 1].cost < before) before = fr[a - 1].cost, pf = 1;
+        if (prim[a].cost < before) before = prim[a].cost, shared = 1, pf = 0;
+      }
+      if (before + COST[kind] < c->cost) {
+        c->cost = before + COST[kind];
+        c->start = a;
+        c->kind = kind;
+        c->shared = shared;
+        c->prev_free = pf;
+      }
+    }
+  }
+}
+
+/* The pieces (first/last sample, kind) of the cheapest cover of the M samples from
+** origin, written backwards into out; returns their number. */
+static size_t cheapest_cover(const section *s, size_t origin, size_t *const len[2],
+                             const size_t rmax[2], cell *prim, cell *fr, bsfit_piece *out) {
+  size_t M = s->m, j, np = 0;
+  int in_free;
+  for (j = 0; j < M; j++) {
+    double a = j > 0 ? fr[j - 1].cost + 1.0 : HUGE_VAL, b = (j > 0 ? prim[j - 1].cost : 0) + 2.0;
+    best_primitive(s, origin, j, len, rmax, prim, fr, &prim[j]);
+    fr[j].kind = FREE;
+    fr[j].shared = 0;
+    if (a <= b) fr[j].cost = a, fr[j].start = fr[j - 1].start, fr[j].prev_free = fr[j - 1].prev_free;
+    else fr[j].cost = b, fr[j].start = j, fr[j].prev_free = 0;
+  }
+  /* trace back from the end */
+  j = M - 1;
+  in_free = fr[j].cost < prim[j].cost;
+  for (;;) {
+    const cell *c = in_free ? &fr[j] : &prim[j];
+    bsfit_piece *p = &out[np++];
+    memset(p, 0, sizeof *p);
+    p->kind = (bsfit_piece_kind)c->kind;
+    p->first = (origin + c->start) % s->m;
+    p->count = j - c->start + 1;
+    if (c->start == 0) break;
+    if (c->shared) j = c->start;
+    else j = c->start - 1;
+    in_free = c->prev_free;
+  }
+  return np;
+}
+
+/* }==================================================================== */
+
+/* {====================================================================
+** Where pieces meet
+** ===================================================================== */
+
+static size_t piece_count(const section *s, const bsfit_piece *p) {
+  (void)s;
+  return p->count;
+}
+
+static void refit(const section *s, bsfit_piece *p, model *md) {
+  double rms = 0;
+  p->max = fit_model(s, p->kind, p->first, piece_count(s, p), md, &rms);
+  p->rms = rms;
+  if (p->kind == ARC) {
+    memcpy(p->centre, md->circle.c, sizeof p->centre);
+    p->radius = md->circle.r;
+  }
+}
+
+/* the model's foot point of x and its unit tangent there (along the traversal) */
+static void foot(const model *md, const double *x, double *f, double *t) {
+  if (md->kind == LINE) {
+    double u = (x[0] - md->line.p[0]) * md->line.d[0] + (x[1] - md->line.p[1]) * md->line.d[1];
+    f[0] = md->line.p[0] + u * md->line.d[0];
+    f[1] = md->line.p[1] + u * md->line.d[1];
+    t[0] = md->line.d[0];
+    t[1] = md->line.d[1];
+  } else {
+    double dx = x[0] - md->circle.c[0], dy = x[1] - md->circle.c[1], d = hypot(dx, dy);
+    f[0] = md->circle.c[0] + md->circle.r * dx / d;
+    f[1] = md->circle.c[1] + md->circle.r * dy / d;
+    t[0] = -md->orient * dy / d;
+    t[1] = md->orient * dx / d;
+  }
+}
+
+/* the largest spacing of a piece's samples */
+static double max_spacing(const section *s, const bsfit_piece *p) {
+  size_t k, n = piece_count(s, p);
+  double h = 0;
+  for (k = 0; k + 1 < n; k++) {
+    const double *a = sample(s, p->first + k), *b = sample(s, p->first + k + 1);
+    double d = hypot(b[0] - a[0], b[1] - a[1]);
+    if (d > h) h = d;
+  }
+  return h;
+}
+
+/* Where A (ending at sample la) and B (starting at fb) meet: the meeting point of their
+** models that lies beyond A's last sample, before B's first and within reach of both
+** (as far as the pieces' own spacing), or, for models that touch, the touching point.
+** Returns 0 (no such point), BSFIT_JOIN_CORNER or BSFIT_JOIN_TANGENT. */
+static int meet(const section *s, const bsfit_piece *A, const model *ma, const bsfit_piece *B,
+                const model *mb, double *x) {
+  const double *qa = sample(s, A->first + A->count - 1), *qb = sample(s, B->first);
+  double cand[2][2], best = HUGE_VAL, ta[2], tb[2], f[2], reach_a, reach_b, chord;
+  int nc = 0, k, found = 0;
+  if (ma->kind == LINE && mb->kind == LINE) nc = bsfit__meet_lines(&ma->line, &mb->line, cand[0]);
+  else if (ma->kind == LINE) nc = bsfit__meet_line_circle(&ma->line, &mb->circle, cand);
+  else if (mb->kind == LINE) nc = bsfit__meet_line_circle(&mb->line, &ma->circle, cand);
+  else nc = bsfit__meet_circles(&ma->circle, &mb->circle, cand);
+  if (nc == 0 && (ma->kind == ARC || mb->kind == ARC)) {
+    /* models that miss each other by the tolerance touch: the point of closest approach */
+    double tmp[2];
+    foot(ma->kind == ARC ? mb : ma, ma->kind == ARC ? ma->circle.c : mb->circle.c, tmp, ta);
+    foot(ma->kind == ARC ? ma : mb, tmp, cand[0], tb);
+    if (model_dist(ma, cand[0]) <= s->tol && model_dist(mb, cand[0]) <= 2 * s->tol) nc = 1;
+  }
+  chord = hypot(qb[0] - qa[0], qb[1] - qa[1]);
+  reach_a = 1.5 * max_spacing(s, A) + chord + s->tol;
+  reach_b = 1.5 * max_spacing(s, B) + chord + s->tol;
+  for (k = 0; k < nc; k++) {
+    double *c = cand[k], da = hypot(c[0] - qa[0], c[1] - qa[1]), db = hypot(c[0] - qb[0], c[1] - qb[1]);
+    foot(ma, qa, f, ta);
+    foot(mb, qb, f, tb);
+    if (da > reach_a || db > reach_b) continue;
+    if ((c[0] - qa[0]) * ta[0] + (c[1] - qa[1]) * ta[1] < -2 * s->tol) continue;
+    if ((qb[0] - c[0]) * tb[0] + (qb[1] - c[1]) * tb[1] < -2 * s->tol) continue;
+    if (da + db < best) best = da + db, x[0] = c[0], x[1] = c[1], found = 1;
+  }
+  if (!found) return 0;
+  foot(ma, x, f, ta);
+  foot(mb, x, f, tb);
+  {
+    double cross = ta[0] * tb[1] - ta[1] * tb[0], dot = ta[0] * tb[0] + ta[1] * tb[1];
+    double angle = atan2(fabs(cross), dot);
+    /* the directions agree to what the tolerance lets a model's direction vary over
+    ** the shorter piece */
+    double la = 1.5 * max_spacing(s, A), lb = 1.5 * max_spacing(s, B);
+    double lim = 4.0 * s->tol / fmax(fmin(la, lb), 1e-300);
+    if (nc == 1 && (ma->kind == ARC || mb->kind == ARC)) return BSFIT_JOIN_TANGENT;
+    return angle <= fmin(lim, 0.1) ? BSFIT_JOIN_TANGENT : BSFIT_JOIN_CORNER;
+  }
+}
+
+/* }==================================================================== */
+
+/* {====================================================================
+** The pieces
+** ===================================================================== */
+
+static void set_line_ends(bsfit_piece *p, const model *md) {
+  memcpy(p->t_start, md->line.d, sizeof p->t_start);
+  memcpy(p->t_end, md->line.d, sizeof p->t_end);
+}
+
+/* arcs: the sweep from start to end in the samples' direction */
+static void set_arc_sweep(bsfit_piece *p, const model *md, int whole) {
+  double a0 = atan2(p->start[1] - md->circle.c[1], p->start[0] - md->circle.c[0]);
+  double a1 = atan2(p->end[1] - md->circle.c[1], p->end[0] - md->circle.c[0]);
+  double sw = a1 - a0;
+  if (whole) sw = 0;
+  if (md->orient > 0) { while (sw <= 0) sw += 2 * PI; }
+  else { while (sw >= 0) sw -= 2 * PI; }
+  p->sweep = sw;
+}
+
+/* A meets B (both in the list, B after A): sets A's end, B's start, tangents and B's
+** join. Returns 0 when two primitives' models do not meet between them. */
+static int join_pieces(const section *s, bsfit_piece *A, const model *ma, bsfit_piece *B,
+                       const model *mb) {
+  double x[2], f[2], t[2];
+  int k;
+  if (A->kind != FREE && B->kind != FREE) {
+    k = meet(s, A, ma, B, mb, x);
+    if (!k) return 0;
+    memcpy(A->end, x, sizeof x);
+    memcpy(B->start, x, sizeof x);
+    foot(ma, x, f, A->t_end);
+    foot(mb, x, f, B->t_start);
+    B->join = (bsfit_join_kind)k;
+    return 1;
+  }
+  /* a free run meets a primitive at the primitive's extreme sample, tangentially */
+  if (A->kind != FREE) foot(ma, sample(s, A->first + A->count - 1), f, t);
+  else foot(mb, sample(s, B->first), f, t);
+  memcpy(A->end, f, sizeof f);
+  memcpy(B->start, f, sizeof f);
+  memcpy(A->t_end, t, sizeof t);
+  memcpy(B->t_start, t, sizeof t);
+  B->join = BSFIT_JOIN_TANGENT;
+  return 1;
+}
+
+/* A free piece of exactly 2 samples between two primitives becomes the line through
+** them when both its ends then meet the neighbours at corners (a short side). */
+static void short_sides(const section *s, bsfit_piece *p, model *md, size_t np) {
+  size_t i;
+  for (i = 0; i < np; i++) {
+    size_t ia = (i + np - 1) % np, ib = (i + 1) % np;
+    bsfit_piece trial = p[i], A = p[ia], B = p[ib];
+    model ml;
+    double x[2];
+    if (p[i].kind != FREE || p[i].count != 2 || np < 3) continue;
+    if (!s->closed && (i == 0 || i + 1 == np)) continue;
+    if (A.kind == FREE || B.kind == FREE) continue;
+    trial.kind = LINE;
+    if (fit_model(s, LINE, trial.first, 2, &ml, NULL) == HUGE_VAL) continue;
+    if (meet(s, &A, &md[ia], &trial, &ml, x) != BSFIT_JOIN_CORNER) continue;
+    if (meet(s, &trial, &ml, &B, &md[ib], x) != BSFIT_JOIN_CORNER) continue;
+    p[i].kind = LINE;
+    md[i] = ml;
+  }
+}
+
+/* The ends of every piece; a free bridge (no samples) is inserted where two primitives
+** do not meet. p has room for 2 np pieces; returns the new count. */
+static size_t place_ends(const section *s, bsfit_piece *p, model *md, size_t np) {
+  size_t i, n = np;
+  for (i = 0; i < n; i++) {
+    size_t ib = i + 1;
+    if (ib == n) {
+      if (!s->closed) break;
+      ib = 0;
+    }
+    if (join_pieces(s, &p[i], &md[i], &p[ib], &md[ib])) continue;
+    /* bridge: from A's last sample (on A) to B's first (on B) */
+    memmove(&p[i + 2], &p[i + 1], (n - i - 1) * sizeof *p);
+    memmove(&md[i + 2], &md[i + 1], (n - i - 1) * sizeof *md);
+    memset(&p[i + 1], 0, sizeof *p);
+    p[i + 1].kind = FREE;
+    p[i + 1].first = (p[ib == 0 ? 0 : i + 2].first);
+    p[i + 1].count = 0;
+    md[i + 1].kind = FREE;
+    n++;
+    join_pieces(s, &p[i], &md[i], &p[i + 1], &md[i + 1]);
+    join_pieces(s, &p[i + 1], &md[i + 1], &p[(i + 2) % n], &md[(i + 2) % n]);
+    i++;
+  }
+  return n;
+}
+
+/* the first and last pieces of an open section end at its first and last samples */
+static void open_ends(const section *s, bsfit_piece *p, const model *md, size_t n) {
+  double t[2];
+  bsfit_piece *z = &p[n - 1];
+  p[0].join = BSFIT_JOIN_END;
+  if (p[0].kind == FREE) memcpy(p[0].start, sample(s, 0), sizeof p[0].start);
+  else foot(&md[0], sample(s, 0), p[0].start, p[0].t_start);
+  if (z->kind == FREE) memcpy(z->end, sample(s, s->m - 1), sizeof z->end);
+  else foot(&md[n - 1], sample(s, s->m - 1), z->end, t), memcpy(z->t_end, t, sizeof t);
+}
+
+/* }==================================================================== */
+
+/* the bounding-box diagonal */
+static double size_of(const double *pts, size_t m) {
+  double lo[2] = {pts[0], pts[1]}, hi[2] = {pts[0], pts[1]};
+  size_t i;
+  int d;
+  for (i = 1; i < m; i++)
+    for (d = 0; d < 2; d++) {
+      if (pts[2 * i + d] < lo[d]) lo[d] = pts[2 * i + d];
+      if (pts[2 * i + d] > hi[d]) hi[d] = pts[2 * i + d];
+    }
+  return hypot(hi[0] - lo[0], hi[1] - lo[1]);
+}
+
+static bsfit_err check_args(const double *pts, size_t m, int dim, const bsfit_segment_opts *o,
+                            bsfit_status *st) {
+  if (dim != 2) return bsfit__fail(st, BSFIT_EDIM, "segmentation needs 2D points, got dim %d", dim);
+  if (pts == NULL || m < 3)
+    return bsfit__fail(st, BSFIT_ETOOFEW, "segmentation needs at least 3 points, got %zu", m);
+  if (!bsfit__all_finite(pts, 2 * m)) return bsfit__fail(st, BSFIT_ENONFINITE, "points contain NaN or Inf");
+  if (!(o->sigma >= 0) || !isfinite(o->sigma) || !(o->tol_sigma >= 0) || !isfinite(o->tol_sigma) ||
+      !(o->exact >= 0) || !(o->exact < 1) || o->min_line == 1 || o->min_arc == 1 || o->min_arc == 2)
+    return bsfit__fail(st, BSFIT_EINVAL, "segmentation options out of range (sigma %g, tol_sigma %g, "
+                       "exact %g, min_line %zu, min_arc %zu)", o->sigma, o->tol_sigma, o->exact,
+                       o->min_line, o->min_arc);
+  if (!(size_of(pts, m) > 0)) return bsfit__fail(st, BSFIT_EDEGENERATE, "all %zu points coincide", m);
+  return BSFIT_OK;
+}
+
+/* The longest run of each kind: its length (rmax) and where it starts (from[kind]). */
+static void longest_runs(const section *s, size_t *const len[2], size_t rmax[2], size_t from[2]) {
+  size_t i;
+  int k;
+  rmax[0] = rmax[1] = from[0] = from[1] = 0;
+  for (i = 0; i < s->m; i++)
+    for (k = 0; k < 2; k++)
+      if (len[k][i] > rmax[k]) rmax[k] = len[k][i], from[k] = i;
+}
+
+/* The cheapest cover (pieces in order into p, from p[m + 1] as scratch). A closed
+** section is cut where a piece starts: tried at the starts of the longest line and arc
+** and at the samples after them, the cheapest kept. Returns the number of pieces. */
+static size_t cover(const section *s, size_t *const len[2], cell *prim, cell *fr, bsfit_piece *p) {
+  size_t rmax[2], from[2], origins[4], no = 0, k, i, best_np = 0;
+  double best = HUGE_VAL;
+  longest_runs(s, len, rmax, from);
+  for (k = 0; s->closed && k < 2; k++)
+    if (rmax[k] > 0) {
+      origins[no++] = from[k];
+      origins[no++] = (from[k] + rmax[k]) % s->m;
+    }
+  if (no == 0) origins[no++] = 0;
+  for (k = 0; k < no; k++) {
+    size_t np = cheapest_cover(s, origins[k], len, rmax, prim, fr, p + s->m + 1);
+    double c = fr[s->m - 1].cost < prim[s->m - 1].cost ? fr[s->m - 1].cost : prim[s->m - 1].cost;
+    if (c < best) {
+      best = c;
+      best_np = np;
+      for (i = 0; i < np; i++) p[i] = p[s->m + 1 + np - 1 - i]; /* traced backwards */
+    }
+  }
+  return best_np;
+}
+
+/* Models, ends and sweeps of the np pieces of the cover (p has room for 2 np). */
+static size_t finish_pieces(const section *s, bsfit_piece *p, model *md, size_t np) {
+  size_t i;
+  for (i = 0; i < np; i++) {
+    md[i].kind = p[i].kind;
+    if (p[i].kind != FREE) refit(s, &p[i], &md[i]);
+  }
+  short_sides(s, p, md, np);
+  for (i = 0; i < np; i++)
+    if (p[i].kind == LINE) refit(s, &p[i], &md[i]);
+  if (np == 1 && s->closed && p[0].kind == ARC) { /* a whole circle */
+    foot(&md[0], sample(s, p[0].first), p[0].start, p[0].t_start);
+    memcpy(p[0].end, p[0].start, sizeof p[0].end);
+    memcpy(p[0].t_end, p[0].t_start, sizeof p[0].t_end);
+    p[0].join = BSFIT_JOIN_TANGENT;
+    set_arc_sweep(&p[0], &md[0], 1);
+    return 1;
+  }
+  if (np == 1 && s->closed && p[0].kind == FREE) {
+    memcpy(p[0].start, sample(s, p[0].first), sizeof p[0].start);
+    memcpy(p[0].end, p[0].start, sizeof p[0].end);
+    p[0].join = BSFIT_JOIN_TANGENT;
+    return 1;
+  }
+  np = place_ends(s, p, md, np);
+  if (!s->closed) open_ends(s, p, md, np);
+  for (i = 0; i < np; i++) {
+    if (p[i].kind == LINE) set_line_ends(&p[i], &md[i]);
+    if (p[i].kind == ARC) set_arc_sweep(&p[i], &md[i], 0);
+  }
+  return np;
+}
+
+static void count_gaps(section *s) {
+  size_t i;
+  s->gaps[0] = 0;
+  for (i = 0; i < 2 * s->m; i++) {
+    const double *p = sample(s, i), *q = sample(s, i + 1);
+    s->gaps[i + 1] = s->gaps[i] + (hypot(q[0] - p[0], q[1] - p[1]) > s->tol);
+  }
+}
+
+bsfit_err bsfit_segment(const double *pts, size_t m, int dim, const bsfit_segment_opts *opts,
+                        bsfit_piece *pieces, size_t cap, size_t *count, const bsfit_allocator *a,
+                        bsfit_status *st) {
+  bsfit_segment_opts o;
+  section s;
+  size_t *len[2] = {NULL, NULL}, np, i;
+  cell *prim = NULL, *fr = NULL;
+  bsfit_piece *buf = NULL;
+  model *md = NULL;
+  bsfit_err e;
+  memset(&o, 0, sizeof o);
+  if (opts) o = *opts;
+  if (count) *count = 0;
+  if (count == NULL || (pieces == NULL && cap > 0))
+    return bsfit__fail(st, BSFIT_EINVAL, "segmentation: count (and pieces when cap > 0) required");
+  e = check_args(pts, m, dim, &o, st);
+  if (e != BSFIT_OK) return e;
+  s.pts = pts;
+  s.m = m;
+  s.closed = o.closed != 0;
+  s.a = a;
+  s.min_len[LINE] = o.min_line ? o.min_line : 3;
+  s.min_len[ARC] = o.min_arc ? o.min_arc : 4;
+  s.tol = fmax((o.tol_sigma > 0 ? o.tol_sigma : 4.0) * o.sigma, (o.exact > 0 ? o.exact : 1e-10) * size_of(pts, m));
+  s.gaps = bsfit__alloc(a, bsfit__mulsize(2 * m + 1, sizeof(size_t)));
+  len[0] = bsfit__alloc(a, bsfit__mulsize(m, sizeof(size_t)));
+  len[1] = bsfit__alloc(a, bsfit__mulsize(m, sizeof(size_t)));
+  prim = bsfit__alloc(a, bsfit__mulsize(m, sizeof(cell)));
+  fr = bsfit__alloc(a, bsfit__mulsize(m, sizeof(cell)));
+  buf = bsfit__alloc(a, bsfit__mulsize(2 * m + 2, sizeof(bsfit_piece)));
+  md = bsfit__alloc(a, bsfit__mulsize(2 * m + 2, sizeof(model)));
+  if (!s.gaps || !len[0] || !len[1] || !prim || !fr || !buf || !md) {
+    e = bsfit__fail(st, BSFIT_ENOMEM, "out of memory for the segmentation of %zu points", m);
+    goto done;
+  }
+  count_gaps(&s);
+  if ((e = maximal_runs(&s, LINE, len[0])) != BSFIT_OK || (e = maximal_runs(&s, ARC, len[1])) != BSFIT_OK) {
+    e = bsfit__fail(st, e, "segmentation interrupted");
+    goto done;
+  }
+  np = cover(&s, len, prim, fr, buf);
+  np = finish_pieces(&s, buf, md, np);
+  for (i = 0; i < np && i < cap; i++) pieces[i] = buf[i];
+  *count = np;
+  e = bsfit__ok(st);
+done:
+  bsfit__free(a, s.gaps, s.gaps ? (2 * m + 1) * sizeof(size_t) : 0);
+  bsfit__free(a, len[0], len[0] ? m * sizeof(size_t) : 0);
+  bsfit__free(a, len[1], len[1] ? m * sizeof(size_t) : 0);
+  bsfit__free(a, prim, prim ? m * sizeof(cell) : 0);
+  bsfit__free(a, fr, fr ? m * sizeof(cell) : 0);
+  bsfit__free(a, buf, buf ? (2 * m + 2) * sizeof(bsfit_piece) : 0);
+  bsfit__free(a, md, md ? (2 * m + 2) * sizeof(model) : 0);
+  return e;
+}
