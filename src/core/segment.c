@@ -130,7 +130,13 @@ typedef struct cell {
   int prev_free; /* the piece before is free */
 } cell;
 
-static const double COST[3] = {2.0, 3.0, 0.0}; /* per piece: a line's parameters, an arc's */
+/* Costs, in parameters: a line has 2, an arc 3; a free sample costs 1.5 (the control
+** point or so that follows it), a free run 1 more (its ends), so that three samples on a
+** line (2) beat three free ones (5.5) and a side of lines between fillets too sparse
+** to be arcs is still cut into lines. */
+static const double COST[3] = {2.0, 3.0, 0.0};
+#define FREE_SAMPLE 1.5
+#define FREE_RUN 1.0
 
 /* best primitive piece ending at offset j (into *c); prim/fr are the two DP arrays */
 static void best_primitive(const section *s, size_t origin, size_t j, size_t *const len[2],
@@ -167,7 +173,8 @@ static size_t cheapest_cover(const section *s, size_t origin, size_t *const len[
   size_t M = s->m, j, np = 0;
   int in_free;
   for (j = 0; j < M; j++) {
-    double a = j > 0 ? fr[j - 1].cost + 1.0 : HUGE_VAL, b = (j > 0 ? prim[j - 1].cost : 0) + 2.0;
+    double a = j > 0 ? fr[j - 1].cost + FREE_SAMPLE : HUGE_VAL;
+    double b = (j > 0 ? prim[j - 1].cost : 0) + FREE_SAMPLE + FREE_RUN;
     best_primitive(s, origin, j, len, rmax, prim, fr, &prim[j]);
     fr[j].kind = FREE;
     fr[j].shared = 0;
@@ -242,51 +249,70 @@ static double max_spacing(const section *s, const bsfit_piece *p) {
   return h;
 }
 
-/* Where A (ending at sample la) and B (starting at fb) meet: the meeting point of their
-** models that lies beyond A's last sample, before B's first and within reach of both
-** (as far as the pieces' own spacing), or, for models that touch, the touching point.
-** Returns 0 (no such point), BSFIT_JOIN_CORNER or BSFIT_JOIN_TANGENT. */
+/* Do the models touch? A line and a circle when the centre is r from the line, two
+** circles when their centres are r1 + r2 or |r1 - r2| apart, within the tolerance
+** (a tangent join meets at the touching point, which the intersection formulas find
+** only to the square root of the rounding). Writes the touching point. */
+static int touching(const section *s, const model *ma, const model *mb, double *x) {
+  double t[2];
+  if (ma->kind == LINE && mb->kind == LINE) return 0;
+  if (ma->kind == LINE || mb->kind == LINE) {
+    const model *ml = ma->kind == LINE ? ma : mb, *mc = ma->kind == LINE ? mb : ma;
+    foot(ml, mc->circle.c, x, t);
+    return fabs(hypot(x[0] - mc->circle.c[0], x[1] - mc->circle.c[1]) - mc->circle.r) <= 2 * s->tol;
+  } else {
+    const bsfit__circle *A = &ma->circle, *B = &mb->circle;
+    double d = hypot(B->c[0] - A->c[0], B->c[1] - A->c[1]), u;
+    if (d <= s->tol) return 0;
+    if (fabs(d - (A->r + B->r)) <= 2 * s->tol) u = A->r / d; /* outside each other */
+    else if (fabs(d - fabs(A->r - B->r)) <= 2 * s->tol) u = A->r > B->r ? A->r / d : -A->r / d;
+    else return 0;
+    x[0] = A->c[0] + u * (B->c[0] - A->c[0]);
+    x[1] = A->c[1] + u * (B->c[1] - A->c[1]);
+    return 1;
+  }
+}
+
+/* Is x where A (last sample qa) may meet B (first sample qb)? Beyond qa along A, before
+** qb along B, and within reach of both (as far as the pieces' own spacing). */
+static int in_gap(const section *s, const bsfit_piece *A, const model *ma, const bsfit_piece *B,
+                  const model *mb, const double *x) {
+  const double *qa = sample(s, A->first + A->count - 1), *qb = sample(s, B->first);
+  double ta[2], tb[2], f[2], chord = hypot(qb[0] - qa[0], qb[1] - qa[1]);
+  double reach_a = 1.5 * max_spacing(s, A) + chord + s->tol;
+  double reach_b = 1.5 * max_spacing(s, B) + chord + s->tol;
+  foot(ma, qa, f, ta);
+  foot(mb, qb, f, tb);
+  if (hypot(x[0] - qa[0], x[1] - qa[1]) > reach_a || hypot(x[0] - qb[0], x[1] - qb[1]) > reach_b)
+    return 0;
+  if ((x[0] - qa[0]) * ta[0] + (x[1] - qa[1]) * ta[1] < -2 * s->tol) return 0;
+  return (qb[0] - x[0]) * tb[0] + (qb[1] - x[1]) * tb[1] >= -2 * s->tol;
+}
+
+/* Where A and B meet: their touching point (a tangent join), or the meeting point of
+** their models that lies in the gap between them (nearest to both samples), a corner
+** unless their directions there agree to what the tolerance lets them vary over the
+** shorter piece. Returns 0 (no such point), BSFIT_JOIN_CORNER or BSFIT_JOIN_TANGENT. */
 static int meet(const section *s, const bsfit_piece *A, const model *ma, const bsfit_piece *B,
                 const model *mb, double *x) {
   const double *qa = sample(s, A->first + A->count - 1), *qb = sample(s, B->first);
-  double cand[2][2], best = HUGE_VAL, ta[2], tb[2], f[2], reach_a, reach_b, chord;
+  double cand[2][2], best = HUGE_VAL, ta[2], tb[2], f[2], lim, angle;
   int nc = 0, k, found = 0;
+  if (touching(s, ma, mb, x)) return in_gap(s, A, ma, B, mb, x) ? BSFIT_JOIN_TANGENT : 0;
   if (ma->kind == LINE && mb->kind == LINE) nc = bsfit__meet_lines(&ma->line, &mb->line, cand[0]);
   else if (ma->kind == LINE) nc = bsfit__meet_line_circle(&ma->line, &mb->circle, cand);
   else if (mb->kind == LINE) nc = bsfit__meet_line_circle(&mb->line, &ma->circle, cand);
   else nc = bsfit__meet_circles(&ma->circle, &mb->circle, cand);
-  if (nc == 0 && (ma->kind == ARC || mb->kind == ARC)) {
-    /* models that miss each other by the tolerance touch: the point of closest approach */
-    double tmp[2];
-    foot(ma->kind == ARC ? mb : ma, ma->kind == ARC ? ma->circle.c : mb->circle.c, tmp, ta);
-    foot(ma->kind == ARC ? ma : mb, tmp, cand[0], tb);
-    if (model_dist(ma, cand[0]) <= s->tol && model_dist(mb, cand[0]) <= 2 * s->tol) nc = 1;
-  }
-  chord = hypot(qb[0] - qa[0], qb[1] - qa[1]);
-  reach_a = 1.5 * max_spacing(s, A) + chord + s->tol;
-  reach_b = 1.5 * max_spacing(s, B) + chord + s->tol;
   for (k = 0; k < nc; k++) {
-    double *c = cand[k], da = hypot(c[0] - qa[0], c[1] - qa[1]), db = hypot(c[0] - qb[0], c[1] - qb[1]);
-    foot(ma, qa, f, ta);
-    foot(mb, qb, f, tb);
-    if (da > reach_a || db > reach_b) continue;
-    if ((c[0] - qa[0]) * ta[0] + (c[1] - qa[1]) * ta[1] < -2 * s->tol) continue;
-    if ((qb[0] - c[0]) * tb[0] + (qb[1] - c[1]) * tb[1] < -2 * s->tol) continue;
-    if (da + db < best) best = da + db, x[0] = c[0], x[1] = c[1], found = 1;
+    double *c = cand[k], d = hypot(c[0] - qa[0], c[1] - qa[1]) + hypot(c[0] - qb[0], c[1] - qb[1]);
+    if (in_gap(s, A, ma, B, mb, c) && d < best) best = d, x[0] = c[0], x[1] = c[1], found = 1;
   }
   if (!found) return 0;
   foot(ma, x, f, ta);
   foot(mb, x, f, tb);
-  {
-    double cross = ta[0] * tb[1] - ta[1] * tb[0], dot = ta[0] * tb[0] + ta[1] * tb[1];
-    double angle = atan2(fabs(cross), dot);
-    /* the directions agree to what the tolerance lets a model's direction vary over
-    ** the shorter piece */
-    double la = 1.5 * max_spacing(s, A), lb = 1.5 * max_spacing(s, B);
-    double lim = 4.0 * s->tol / fmax(fmin(la, lb), 1e-300);
-    if (nc == 1 && (ma->kind == ARC || mb->kind == ARC)) return BSFIT_JOIN_TANGENT;
-    return angle <= fmin(lim, 0.1) ? BSFIT_JOIN_TANGENT : BSFIT_JOIN_CORNER;
-  }
+  angle = atan2(fabs(ta[0] * tb[1] - ta[1] * tb[0]), ta[0] * tb[0] + ta[1] * tb[1]);
+  lim = 4.0 * s->tol / fmax(1.5 * fmin(max_spacing(s, A), max_spacing(s, B)), 1e-300);
+  return angle <= fmin(lim, 0.1) ? BSFIT_JOIN_TANGENT : BSFIT_JOIN_CORNER;
 }
 
 /* }==================================================================== */
@@ -338,24 +364,25 @@ static int join_pieces(const section *s, bsfit_piece *A, const model *ma, bsfit_
   return 1;
 }
 
-/* A free piece of exactly 2 samples between two primitives becomes the line through
-** them when both its ends then meet the neighbours at corners (a short side). */
-static void short_sides(const section *s, bsfit_piece *p, model *md, size_t np) {
+/* A free piece of 2 (3) samples between two primitives becomes the line (circle)
+** through them when both its ends then meet the neighbours: a short side, or an arc
+** sampled too sparsely to be told from a curve, that both neighbours confirm. */
+static void short_runs(const section *s, bsfit_piece *p, model *md, size_t np) {
   size_t i;
   for (i = 0; i < np; i++) {
     size_t ia = (i + np - 1) % np, ib = (i + 1) % np;
-    bsfit_piece trial = p[i], A = p[ia], B = p[ib];
-    model ml;
+    bsfit_piece trial = p[i];
+    model mt;
     double x[2];
-    if (p[i].kind != FREE || p[i].count != 2 || np < 3) continue;
+    if (p[i].kind != FREE || (p[i].count != 2 && p[i].count != 3) || np < 2) continue;
     if (!s->closed && (i == 0 || i + 1 == np)) continue;
-    if (A.kind == FREE || B.kind == FREE) continue;
-    trial.kind = LINE;
-    if (fit_model(s, LINE, trial.first, 2, &ml, NULL) == HUGE_VAL) continue;
-    if (meet(s, &A, &md[ia], &trial, &ml, x) != BSFIT_JOIN_CORNER) continue;
-    if (meet(s, &trial, &ml, &B, &md[ib], x) != BSFIT_JOIN_CORNER) continue;
-    p[i].kind = LINE;
-    md[i] = ml;
+    if (p[ia].kind == FREE || p[ib].kind == FREE) continue;
+    trial.kind = p[i].count == 2 ? LINE : ARC;
+    if (fit_model(s, trial.kind, trial.first, trial.count, &mt, NULL) == HUGE_VAL) continue;
+    if (!meet(s, &p[ia], &md[ia], &trial, &mt, x) || !meet(s, &trial, &mt, &p[ib], &md[ib], x))
+      continue;
+    p[i].kind = trial.kind;
+    refit(s, &p[i], &md[i]);
   }
 }
 
@@ -469,9 +496,7 @@ static size_t finish_pieces(const section *s, bsfit_piece *p, model *md, size_t 
     md[i].kind = p[i].kind;
     if (p[i].kind != FREE) refit(s, &p[i], &md[i]);
   }
-  short_sides(s, p, md, np);
-  for (i = 0; i < np; i++)
-    if (p[i].kind == LINE) refit(s, &p[i], &md[i]);
+  short_runs(s, p, md, np);
   if (np == 1 && s->closed && p[0].kind == ARC) { /* a whole circle */
     foot(&md[0], sample(s, p[0].first), p[0].start, p[0].t_start);
     memcpy(p[0].end, p[0].start, sizeof p[0].end);
