@@ -1,0 +1,198 @@
+-- test_sharp.lua: sharp features (issue 14) on sections of lines and arcs known exactly
+-- (tests/lua/shapes_sharp.lua): bs.geom.segment and the auto strategy's one curve, on
+-- clean samples (corners, straightness, radii and the whole curve to 1e-9 of the size),
+-- sparse samples (no overshoot), the kernels behind the curve (bs.curve.line, arc, join)
+-- and the self-intersection check.
+local T = require "tap"
+local bs = require "bsfit"
+local shapes = require "shapes_sharp"
+local auto = require "bsfit.strategy.auto"
+
+local function dist(a, b) return math.sqrt((a[1] - b[1]) ^ 2 + (a[2] - b[2]) ^ 2) end
+
+-- the names of every generated outline, sorted (a stable order for the messages)
+local ALL = shapes.all()
+local NAMES = {}
+for k in pairs(ALL) do NAMES[#NAMES + 1] = k end
+table.sort(NAMES)
+
+-- The cases of the clean sweep: every outline, 3 to 10 samples per side, even and
+-- uneven (two seeds).
+local function clean_cases()
+  local cases = {}
+  for _, name in ipairs(NAMES) do
+    for _, per in ipairs { 3, 4, 6, 10 } do
+      cases[#cases + 1] = { name = name, per = per, uneven = false, seed = 1 }
+      for seed = 1, 2 do cases[#cases + 1] = { name = name, per = per, uneven = true, seed = seed + per } end
+    end
+  end
+  return cases
+end
+
+-- the distance from x to the line through a and b
+local function line_dist(x, a, b)
+  local dx, dy = b[1] - a[1], b[2] - a[2]
+  return math.abs((x[1] - a[1]) * dy - (x[2] - a[2]) * dx) / math.sqrt(dx * dx + dy * dy)
+end
+
+T.test("clean sections of lines and arcs: corners exact, curve within 1e-9 of the size everywhere", function()
+  for _, c in ipairs(clean_cases()) do
+    local o = ALL[c.name]
+    local size = shapes.size(o)
+    local P = bs.points.new(shapes.sample(o, c.per, { uneven = c.uneven, seed = c.seed }))
+    local C, rep = auto.run(P)
+    local what = ("%s %d per side%s (seed %d)"):format(c.name, c.per, c.uneven and " uneven" or "", c.seed)
+    T.ok(rep.pieces ~= nil, what .. ": segmented")
+    local h = shapes.hausdorff(bs, C, o, 4000, 100)
+    T.ok(h <= 1e-9 * size, ("%s: Hausdorff %g of the size"):format(what, h / size))
+    -- every true corner is a corner join, at the true corner
+    local found = {}
+    for _, p in ipairs(rep.pieces or {}) do
+      if p.join == "corner" then found[#found + 1] = p.start end
+    end
+    T.eq(#found, #o.corners, what .. ": corners")
+    for _, v in ipairs(o.corners) do
+      local best = math.huge
+      for _, x in ipairs(found) do best = math.min(best, dist(v, x)) end
+      T.ok(best <= 1e-9 * size, ("%s: corner (%g, %g) missed by %g"):format(what, v[1], v[2], best))
+    end
+    T.eq(#rep.corners, #o.corners, what .. ": rep.corners")
+  end
+end)
+
+T.test("clean sections: lines straight to 1e-12, arc radii and centres to 1e-9", function()
+  for _, c in ipairs(clean_cases()) do
+    local o = ALL[c.name]
+    local size = shapes.size(o)
+    local P = bs.points.new(shapes.sample(o, c.per, { uneven = c.uneven, seed = c.seed }))
+    local C, rep = auto.run(P)
+    local what = ("%s %d per side%s"):format(c.name, c.per, c.uneven and " uneven" or "")
+    local a, b = C:domain()
+    for i, p in ipairs(rep.pieces or {}) do
+      local r0, r1 = a + (b - a) * p.range[1], a + (b - a) * p.range[2]
+      if p.kind == "line" then
+        local worst = 0
+        for k = 0, 16 do
+          local x = { C:eval(r0 + (r1 - r0) * k / 16) }
+          worst = math.max(worst, line_dist(x, p.start, p["end"]))
+        end
+        T.ok(worst <= 1e-12 * size, ("%s: line %d bends by %g of the size"):format(what, i, worst / size))
+      elseif p.kind == "arc" then
+        -- the true arc it follows: the nearest true centre
+        local best, tr = math.huge, nil
+        for _, q in ipairs(o.prims) do
+          if q.kind == "arc" and dist(q.c, p.centre) < best then best, tr = dist(q.c, p.centre), q end
+        end
+        T.ok(tr and math.abs(p.radius - tr.r) <= 1e-9 * tr.r and best <= 1e-9 * size,
+             ("%s: arc %d radius %g centre off by %g"):format(what, i, p.radius, best))
+        local worst = 0
+        for k = 0, 16 do
+          local x = { C:eval(r0 + (r1 - r0) * k / 16) }
+          worst = math.max(worst, math.abs(dist(x, p.centre) - p.radius))
+        end
+        T.ok(worst <= 1e-9 * size, ("%s: arc %d off its circle by %g"):format(what, i, worst))
+      end
+    end
+  end
+end)
+
+T.test("the one curve: NURBS only with arcs, polynomial otherwise; closed and periodic; JSON round trip", function()
+  local P = bs.points.new(shapes.sample(ALL.T, 4))
+  local C = auto.run(P)
+  T.ok(not C:is_rational(), "a T of lines is polynomial")
+  T.ok(C:is_periodic() and C:degree() == 3, "closed, cubic")
+  P = bs.points.new(shapes.sample(ALL.keyhole, 5))
+  C = auto.run(P)
+  T.ok(C:is_rational() and C:degree() == 3, "a keyhole has an arc: NURBS of degree 3")
+  local D = bs.curve.from_json(C:to_json())
+  local S1, S2 = C:sample(500), D:sample(500)
+  local worst = 0
+  for i = 1, #S1 do worst = math.max(worst, dist({ S1:get(i) }, { S2:get(i) })) end
+  T.ok(worst <= 1e-12 * shapes.size(ALL.keyhole), "JSON round trip " .. worst)
+end)
+
+T.test("bs.geom.segment: pieces, ranges and report fields", function()
+  local P = bs.points.new(shapes.sample(ALL.D, 5))
+  local ps = bs.geom.segment(P)
+  T.eq(#ps, 2)
+  local kinds = { ps[1].kind, ps[2].kind }
+  table.sort(kinds)
+  T.eq(kinds[1], "arc")
+  T.eq(kinds[2], "line")
+  for _, p in ipairs(ps) do
+    T.eq(p.join, "corner")
+    T.eq(p.count, 5)
+    if p.kind == "arc" then
+      T.near(p.radius, 10, 1e-12)
+      T.near(math.abs(p.sweep), math.pi, 1e-12)
+      T.ok(p.max <= 1e-12, "arc max " .. p.max)
+    end
+  end
+  -- an open polyline of three sides: the ends are its first and last samples' feet
+  local open = {}
+  for i = 0, 4 do open[#open + 1] = { i, 0 } end
+  for i = 1, 4 do open[#open + 1] = { 4, i } end
+  for i = 1, 4 do open[#open + 1] = { 4 - i, 4 } end
+  ps = bs.geom.segment(bs.points.new(open), { closed = false })
+  T.eq(#ps, 3)
+  T.eq(ps[1].join, "end")
+  T.near(ps[1].start[1], 0, 1e-12)
+  T.near(ps[3]["end"][1], 0, 1e-12)
+  T.near(ps[3]["end"][2], 4, 1e-12)
+  T.raises({ match = "2D" }, function() bs.geom.segment(bs.points.new { { 0, 0, 0 }, { 1, 0, 0 }, { 1, 1, 0 } }) end)
+  T.raises({ match = "min_arc" }, function() bs.geom.segment(P, { min_arc = 2 }) end)
+  T.raises({ match = "unknown option" }, function() bs.geom.segment(P, { bogus = 1 }) end)
+end)
+
+T.test("bs.curve.line, arc and join against exact geometry", function()
+  local L = bs.curve.line({ 1, 2 }, { 4, 6 })
+  for k = 0, 10 do
+    local x, y = L:eval(k / 10)
+    T.near(x, 1 + 3 * k / 10, 1e-15)
+    T.near(y, 2 + 4 * k / 10, 1e-15)
+  end
+  for _, sweep in ipairs { 0.3, -1.2, math.pi, 4.5, -2 * math.pi } do
+    local A = bs.curve.arc { centre = { 1, -2 }, radius = 3, start = 0.7, sweep = sweep }
+    local x0, y0 = A:eval(0)
+    T.near(x0, 1 + 3 * math.cos(0.7), 1e-14)
+    T.near(y0, -2 + 3 * math.sin(0.7), 1e-14)
+    local x1, y1 = A:eval(1)
+    T.near(x1, 1 + 3 * math.cos(0.7 + sweep), 1e-14)
+    T.near(y1, -2 + 3 * math.sin(0.7 + sweep), 1e-14)
+    for k = 0, 50 do
+      local x, y = A:eval(k / 50)
+      T.near(math.sqrt((x - 1) ^ 2 + (y + 2) ^ 2), 3, 1e-14)
+    end
+    T.near(A:length(), 3 * math.abs(sweep), 1e-9)
+  end
+  local J = bs.curve.join({ bs.curve.line({ 0, 0 }, { 2, 0 }),
+                            bs.curve.arc { centre = { 2, 1 }, radius = 1, start = -math.pi / 2, sweep = math.pi } },
+                          { 2, math.pi })
+  T.ok(J:is_rational() and J:degree() == 3)
+  local x, y = J:eval(1)
+  T.near(x, 2, 1e-15)
+  T.near(y, 2, 1e-15)
+  T.raises({ match = "starts" }, function()
+    bs.curve.join({ bs.curve.line({ 0, 0 }, { 1, 0 }), bs.curve.line({ 2, 0 }, { 3, 0 }) }, { 1, 1 })
+  end)
+  T.raises({ match = "length" }, function()
+    bs.curve.join({ bs.curve.line({ 0, 0 }, { 1, 0 }) }, { 0 })
+  end)
+  T.raises({ match = "radius" }, function() bs.curve.arc { centre = { 0, 0 }, radius = -1, sweep = 1 } end)
+end)
+
+T.test("self-intersection: a figure eight crosses, a circle and a square do not", function()
+  local eight = {}
+  for i = 0, 39 do
+    local t = 2 * math.pi * i / 40
+    eight[#eight + 1] = { math.sin(t), math.sin(t) * math.cos(t) }
+  end
+  local F = bs.fitter { degree = 3, count = 20, periodic = true }
+  local P = bs.points.new(eight)
+  local C8 = F:fit(P, bs.params(P, "chord", { closed = true }))
+  local n, where = bs.geom.self_intersections(C8)
+  T.ok(n >= 1 and where ~= nil, "figure eight: " .. n)
+  local Csq = auto.run(bs.points.new(shapes.sample(ALL.rrect, 5)))
+  T.eq((bs.geom.self_intersections(Csq)), 0)
+  T.eq((bs.geom.self_intersections(bs.curve.arc { centre = { 0, 0 }, radius = 1, sweep = 2 * math.pi })), 0)
+end)
