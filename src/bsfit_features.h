@@ -37,6 +37,11 @@ typedef struct bsfit_piece {
   double radius;          /**< arcs: the radius (0 otherwise) */
   double sweep;           /**< arcs: the signed angle swept, radians (> 0: counter-clockwise) */
   double rms, max;        /**< distances of its samples to its model (free: 0, 0) */
+  double turn;            /**< corner joins: the angle between the two directions, radians */
+  double evidence;        /**< corner joins: how much worse one smooth curve (a circle, or
+                               a cubic over the chord) explains both pieces' samples than
+                               the two models meeting at the corner, in units of
+                               (tol/tol_sigma)^2, i.e. sigma^2 on noisy data */
 } bsfit_piece;
 
 /** Options of bsfit_segment. Zero-initialise, then set what you need. */
@@ -64,6 +69,10 @@ typedef struct bsfit_segment_opts {
 ** extreme sample, projected on its model, with its tangent (G1). A line of 2 samples
 ** between two lines whose corners it confirms is kept as a line.
 **
+** On noisy data a caller keeps a corner only when its `evidence` is large (the smooth
+** alternative misses by many sigma^2): two arcs of an ellipse meet at a small angle
+** that a cubic explains as well.
+**
 ** Cost: O(m r), r the longest run. Limits: 2D only; free-form runs are not split at
 ** corners of their own.
 ** @param[out] pieces at most cap pieces, in section order (for closed sections the
@@ -76,6 +85,24 @@ BSFIT_API bsfit_err bsfit_segment(const double *pts, size_t m, int dim,
                                   const bsfit_segment_opts *opts, bsfit_piece *pieces,
                                   size_t cap, size_t *count, const bsfit_allocator *a,
                                   bsfit_status *st);
+
+/** Estimates the noise of a section of lines and arcs from the models themselves.
+** Segmented at a level below its noise, a section's runs stop short, and the pooled
+** residual of its lines and arcs (sum of squares over degrees of freedom) exceeds the
+** level; at the noise the models are right and the two match. The levels tried rise by
+** 10^(1/4) from a sixteenth of a first guess (how far samples lie off their neighbours'
+** chord: the lower quartile, over its value for pure noise, 0.3186 sigma); the first
+** whose pooled residual is at most 1.2 times the level gives the estimate. Sparse
+** samples of a contour that bends between them make window-based estimates
+** (bsfit_noise_sigma) many times too large; this one is not, where lines and arcs hold
+** the samples. Cost: up to ~30 segmentations (typically 10-20).
+** @param[out] sigma the estimate; 0 when every line and arc is exact to 1e-10 of the
+**                   size, or when no level up to 5% of the size explains the section
+**                   (then lines and arcs do not hold it).
+** @return BSFIT_OK or the codes of bsfit_segment. */
+BSFIT_API bsfit_err bsfit_segment_sigma(const double *pts, size_t m, int dim, int closed,
+                                        double *sigma, const bsfit_allocator *a,
+                                        bsfit_status *st);
 
 /** A straight segment from a to b as a degree-3 curve on [0, 1] with four collinear,
 ** evenly spaced control points (its speed is constant). dim 1..4. */

@@ -21,6 +21,7 @@ typedef struct section {
   size_t m;
   int closed;
   double tol;      /* a sample fits a model within tol */
+  double unit;     /* sigma: tol / tol_sigma (evidence is counted in unit^2) */
   size_t min_len[2];
   size_t *gaps;    /* gaps[i]: how many of the steps j -> j+1, j < i (unwrapped, i <= 2m),
                       are longer than tol: a model needs that many distinct samples */
@@ -318,6 +319,68 @@ static int meet(const section *s, const bsfit_piece *A, const model *ma, const b
 /* }==================================================================== */
 
 /* {====================================================================
+** Evidence for corners
+** ===================================================================== */
+
+/* residual sum of squares of a cubic y(x) over the run, in the frame of its chord (x
+** along it, scaled to [-1, 1]); HUGE_VAL when it cannot be fitted */
+static double cubic_rss(const section *s, size_t first, size_t n) {
+  const double *a = sample(s, first), *b = sample(s, first + n - 1);
+  double ux = b[0] - a[0], uy = b[1] - a[1], len = hypot(ux, uy), A[BSFIT__SMALL][BSFIT__SMALL] = {{0}};
+  double g[4] = {0, 0, 0, 0}, rss = 0;
+  size_t k;
+  int i, j;
+  if (n < 6 || !(len > 0)) return HUGE_VAL;
+  ux /= len, uy /= len;
+  for (k = 0; k < n; k++) {
+    const double *q = sample(s, first + k);
+    double x = ((q[0] - a[0]) * ux + (q[1] - a[1]) * uy) / len * 2.0 - 1.0;
+    double y = -(q[0] - a[0]) * uy + (q[1] - a[1]) * ux, pw[4] = {1, x, x * x, x * x * x};
+    for (i = 0; i < 4; i++) {
+      g[i] += pw[i] * y;
+      for (j = 0; j < 4; j++) A[i][j] += pw[i] * pw[j];
+    }
+  }
+  if (!bsfit__small_cholesky(4, A)) return HUGE_VAL;
+  bsfit__small_chol_solve(4, A, g);
+  for (k = 0; k < n; k++) {
+    const double *q = sample(s, first + k);
+    double x = ((q[0] - a[0]) * ux + (q[1] - a[1]) * uy) / len * 2.0 - 1.0;
+    double y = -(q[0] - a[0]) * uy + (q[1] - a[1]) * ux;
+    double e = y - (g[0] + x * (g[1] + x * (g[2] + x * g[3])));
+    rss += e * e;
+  }
+  return rss;
+}
+
+/* How much worse one smooth curve explains the samples of A and B next to their corner
+** (up to EVIDENCE_REACH on each side: a smooth contour is smooth locally, while two
+** long pieces of it together may turn too far for one cubic) than their two models, in
+** units of sigma^2 = (tol / tol_sigma)^2. */
+#define EVIDENCE_REACH 8
+static double join_evidence(const section *s, const bsfit_piece *A, const model *ma,
+                            const bsfit_piece *B, const model *mb, double sigma) {
+  size_t na = A->count < EVIDENCE_REACH ? A->count : EVIDENCE_REACH;
+  size_t nb = B->count < EVIDENCE_REACH ? B->count : EVIDENCE_REACH, k, first, n;
+  int shared = B->first == (A->first + A->count - 1) % s->m;
+  double two = 0, one, rms;
+  model md;
+  first = A->first + A->count - na;
+  for (k = 0; k < na; k++) two += pow(model_dist(ma, sample(s, first + k)), 2);
+  for (k = 0; k < nb; k++) two += pow(model_dist(mb, sample(s, B->first + k)), 2);
+  if (shared) two -= 0.5 * (pow(model_dist(ma, sample(s, B->first)), 2) +
+                            pow(model_dist(mb, sample(s, B->first)), 2));
+  n = na + nb - (size_t)shared;
+  if (n > s->m) n = s->m;
+  one = cubic_rss(s, first, n);
+  if (fit_model(s, ARC, first, n, &md, &rms) < HUGE_VAL && rms * rms * (double)n < one)
+    one = rms * rms * (double)n;
+  return (one - two) / (sigma * sigma);
+}
+
+/* }==================================================================== */
+
+/* {====================================================================
 ** The pieces
 ** ===================================================================== */
 
@@ -517,6 +580,13 @@ static size_t finish_pieces(const section *s, bsfit_piece *p, model *md, size_t 
     if (p[i].kind == LINE) set_line_ends(&p[i], &md[i]);
     if (p[i].kind == ARC) set_arc_sweep(&p[i], &md[i], 0);
   }
+  for (i = 0; i < np; i++) {
+    const bsfit_piece *q = &p[(i + np - 1) % np];
+    if (p[i].join != BSFIT_JOIN_CORNER) continue;
+    p[i].turn = atan2(fabs(q->t_end[0] * p[i].t_start[1] - q->t_end[1] * p[i].t_start[0]),
+                      q->t_end[0] * p[i].t_start[0] + q->t_end[1] * p[i].t_start[1]);
+    p[i].evidence = join_evidence(s, q, &md[(i + np - 1) % np], &p[i], &md[i], s->unit);
+  }
   return np;
 }
 
@@ -553,6 +623,7 @@ bsfit_err bsfit_segment(const double *pts, size_t m, int dim, const bsfit_segmen
   s.min_len[LINE] = o.min_line ? o.min_line : 3;
   s.min_len[ARC] = o.min_arc ? o.min_arc : 4;
   s.tol = fmax((o.tol_sigma > 0 ? o.tol_sigma : 4.0) * o.sigma, (o.exact > 0 ? o.exact : 1e-10) * size_of(pts, m));
+  s.unit = s.tol / (o.tol_sigma > 0 ? o.tol_sigma : 4.0);
   s.gaps = bsfit__alloc(a, bsfit__mulsize(2 * m + 1, sizeof(size_t)));
   len[0] = bsfit__alloc(a, bsfit__mulsize(m, sizeof(size_t)));
   len[1] = bsfit__alloc(a, bsfit__mulsize(m, sizeof(size_t)));
@@ -582,5 +653,81 @@ done:
   bsfit__free(a, fr, fr ? m * sizeof(cell) : 0);
   bsfit__free(a, buf, buf ? (2 * m + 2) * sizeof(bsfit_piece) : 0);
   bsfit__free(a, md, md ? (2 * m + 2) * sizeof(model) : 0);
+  return e;
+}
+
+/* the first guess of bsfit_segment_sigma: how far samples lie off their neighbours'
+** chord, normalised by the spread that noise alone gives it; its lower quartile over
+** that of |N(0, 1)| (0.3186): corners and arcs only add to it, and it must not start
+** high (a high start lets one model take everything) */
+static double chord_sigma(const double *pts, size_t m, int closed, double *d) {
+  size_t i, n = 0;
+  for (i = closed ? 0 : 1; i < (closed ? m : m - 1); i++) {
+    const double *a = pts + 2 * ((i + m - 1) % m), *q = pts + 2 * i, *b = pts + 2 * ((i + 1) % m);
+    double dx = b[0] - a[0], dy = b[1] - a[1], l2 = dx * dx + dy * dy, t;
+    if (!(l2 > 0)) continue;
+    t = ((q[0] - a[0]) * dx + (q[1] - a[1]) * dy) / l2;
+    d[n++] = fabs((q[0] - a[0]) * dy - (q[1] - a[1]) * dx) / sqrt(l2) / sqrt(1 + t * t + (1 - t) * (1 - t));
+  }
+  return n ? bsfit__select(d, n, n / 4) / 0.3186 : 0.0;
+}
+
+/* pooled residual of the lines and arcs: sum of squares over degrees of freedom */
+static double pooled_sigma(const bsfit_piece *p, size_t np) {
+  double rss = 0, dof = 0;
+  size_t i;
+  for (i = 0; i < np; i++) {
+    double k = p[i].kind == BSFIT_PIECE_LINE ? 2 : 3;
+    if (p[i].kind == BSFIT_PIECE_FREE || (double)p[i].count <= k) continue;
+    rss += p[i].rms * p[i].rms * (double)p[i].count;
+    dof += (double)p[i].count - k;
+  }
+  return dof > 0 ? sqrt(rss / dof) : -1.0;
+}
+
+bsfit_err bsfit_segment_sigma(const double *pts, size_t m, int dim, int closed, double *sigma,
+                              const bsfit_allocator *a, bsfit_status *st) {
+  bsfit_segment_opts o;
+  bsfit_piece *p;
+  size_t bytes, np = 0;
+  double *d, s0, size;
+  int round;
+  bsfit_err e;
+  memset(&o, 0, sizeof o);
+  o.closed = closed;
+  if (sigma) *sigma = 0;
+  if (sigma == NULL) return bsfit__fail(st, BSFIT_EINVAL, "segmentation noise: sigma required");
+  if ((e = check_args(pts, m, dim, &o, st)) != BSFIT_OK) return e;
+  bytes = bsfit__mulsize(2 * m + 2, sizeof *p);
+  p = bsfit__alloc(a, bytes);
+  d = bsfit__alloc(a, m * sizeof *d);
+  if (!p || !d) {
+    e = bsfit__fail(st, BSFIT_ENOMEM, "out of memory for the noise of %zu points", m);
+    goto done;
+  }
+  /* Below the noise, the runs stop short and their pooled residual exceeds the level
+  ** they were cut at; at the noise, the models are right and it matches: the first level,
+  ** rising by 10^(1/4) from well below the first guess, whose pooled residual is at most
+  ** 1.2 times the level is the estimate. */
+  size = size_of(pts, m);
+  s0 = fmax(chord_sigma(pts, m, closed, d) / 16.0, 1e-9 * size);
+  for (round = 0; round < 48 && s0 < 0.05 * size; round++, s0 *= 1.7782794100389228) {
+    double s1;
+    o.sigma = s0;
+    if ((round & 7) == 7 && bsfit__interrupted(a)) {
+      e = bsfit__fail(st, BSFIT_EINTR, "segmentation noise interrupted");
+      goto done;
+    }
+    if ((e = bsfit_segment(pts, m, 2, &o, p, 2 * m + 2, &np, a, st)) != BSFIT_OK) goto done;
+    s1 = pooled_sigma(p, np);
+    if (s1 >= 0 && s1 <= 1.2 * s0) {
+      *sigma = s1 <= 1e-10 * size ? 0.0 : s1;
+      break;
+    }
+  }
+  e = bsfit__ok(st);
+done:
+  bsfit__free(a, p, p ? bytes : 0);
+  bsfit__free(a, d, d ? m * sizeof *d : 0);
   return e;
 }

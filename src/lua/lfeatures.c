@@ -10,7 +10,10 @@
 ** A piece is {kind = "line"|"arc"|"free", join = "corner"|"tangent"|"end", first =,
 ** last =, count = (1-based samples; last < first when it wraps), start = {x, y},
 ** ["end"] = {x, y}, t_start =, t_end = (unit tangents), centre =, radius =, sweep =
-** (arcs), rms =, max = (distances of its samples to its model)}.
+** (arcs), turn = (degrees) and evidence = (sigma^2) at corner joins, rms =, max =
+** (distances of its samples to its model)}.
+**   bs.geom.segment_sigma(P [, {closed = true}]) --> the noise of a section of lines and
+** arcs, read off their own residuals.
 */
 #include "laux.h"
 
@@ -49,6 +52,12 @@ static void push_piece(lua_State *L, const bsfit_piece *p, size_t m) {
     lua_setfield(L, -2, "radius");
     lua_pushnumber(L, p->sweep);
     lua_setfield(L, -2, "sweep");
+  }
+  if (p->join == BSFIT_JOIN_CORNER) {
+    lua_pushnumber(L, p->turn * 57.29577951308232);
+    lua_setfield(L, -2, "turn");
+    lua_pushnumber(L, p->evidence);
+    lua_setfield(L, -2, "evidence");
   }
   lua_pushnumber(L, p->rms);
   lua_setfield(L, -2, "rms");
@@ -95,6 +104,25 @@ static int features_segment(lua_State *L) {
     push_piece(L, &pieces[i], P->n);
     lua_rawseti(L, -2, (lua_Integer)i + 1);
   }
+  return 1;
+}
+
+/* bs.geom.segment_sigma(P [, {closed = true}]) --> sigma */
+static int features_segment_sigma(lua_State *L) {
+  static const char *const names[] = {"closed", NULL};
+  bsfit_points_ud *P = bsfit__lua_topoints(L, 1);
+  int t = bsfit__lua_opttable(L, 2, names);
+  int closed = opt_boolean(L, t, "closed", 1);
+  bsfit_allocator a = bsfit__lua_allocator(L);
+  double sigma = 0;
+  bsfit_status st;
+  bsfit_err e;
+  luaL_argcheck(L, P->dim == 2, 1, "2D points expected");
+  luaL_argcheck(L, P->n >= 3, 1, "at least 3 points expected");
+  bsfit__lua_checkfinite(L, 1, P);
+  e = bsfit_segment_sigma(P->xy, P->n, 2, closed, &sigma, &a, &st);
+  if (e != BSFIT_OK) return bsfit__lua_result(L, e, &st, 0, 1);
+  lua_pushnumber(L, sigma);
   return 1;
 }
 
@@ -204,6 +232,8 @@ void bsfit__lua_lib_features(lua_State *L) {
   if (lua_getfield(L, -1, "geom") == LUA_TTABLE) {
     lua_pushcfunction(L, features_segment);
     lua_setfield(L, -2, "segment");
+    lua_pushcfunction(L, features_segment_sigma);
+    lua_setfield(L, -2, "segment_sigma");
     lua_pushcfunction(L, features_self_intersections);
     lua_setfield(L, -2, "self_intersections");
   }

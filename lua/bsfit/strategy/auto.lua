@@ -503,15 +503,43 @@ end
 -- Steps
 -- =======================================================================
 
--- Lines, arcs and free runs (bs.geom.segment), when the data is exact on lines and arcs:
--- runs of 3 samples collinear, or 4 concyclic, to 1e-10 of the size, holding half the
--- samples, do not happen by chance under noise. Returns the pieces, or {} (one smooth
--- curve).
-function steps.segment(P, ctx)
-  if P:dim() ~= 2 or #P < 6 then return {} end
-  local pieces = bs.geom.segment(P, { closed = closed(ctx) })
-  if not (pieces and sharp.has_features(pieces, #P)) then return {} end
+-- Lines, arcs and free runs (bs.geom.segment), when lines and arcs explain the section:
+--   exact data: runs of 3 samples collinear, or 4 concyclic, to 1e-10 of the size,
+--     holding half the samples (this does not happen by chance under noise);
+--   noisy data: the noise read off the lines' and arcs' own residuals
+--     (bs.geom.segment_sigma) is not above the window estimate (ctx.sigma) by more than
+--     a factor 1.6 (where it is, windows explain the samples better than lines and arcs:
+--     a smooth curve; where it is far below, the samples are too sparse for windows),
+--     lines and arcs hold 90% of the samples, no two lines meet tangentially (a polygon
+--     drawn along a smooth curve), and every corner turns by 15 degrees at least and is
+--     worth 25 sigma^2 over one smooth curve through both its sides (EVIDENCE).
+-- Returns the pieces, or {} (one smooth curve).
+local EVIDENCE, MIN_TURN = 25, 15
+
+local function noisy_pieces(P, ctx)
+  local s = common.ok("noise of the pieces", bs.geom.segment_sigma(P, { closed = closed(ctx) }))
+  if not (s > 0 and s < 1.6 * ctx.sigma) then return nil end
+  local pieces = common.ok("segmentation", bs.geom.segment(P, { closed = closed(ctx), sigma = s }))
+  local held = 0
+  for i, p in ipairs(pieces) do
+    if p.kind ~= "free" then held = held + p.count end
+    if p.join == "corner" and (p.turn < MIN_TURN or p.evidence < EVIDENCE) then return nil end
+    local q = pieces[(i - 2) % #pieces + 1]
+    if p.join == "tangent" and p.kind == "line" and q.kind == "line" and #pieces > 1 then return nil end
+  end
+  if held < 0.9 * #P then return nil end
+  ctx.segment_sigma = s
   return pieces
+end
+
+function steps.segment(P, ctx)
+  -- down-weighted points and Huber reweighting ask for a fit that discounts samples: the
+  -- pieces follow every sample they hold, so such sections take the smooth path
+  if P:dim() ~= 2 or #P < 6 or ctx.settings.robust or common.trusted(ctx) then return {} end
+  local pieces = common.ok("segmentation", bs.geom.segment(P, { closed = closed(ctx) }))
+  if sharp.has_features(pieces, #P) then ctx.segment_sigma = 0; return pieces end
+  if #P <= 5000 then return noisy_pieces(P, ctx) or {} end
+  return {}
 end
 
 function steps.params(P, ctx)
@@ -690,7 +718,7 @@ end
 function steps.assemble(P, ctx)
   if not sharp_path(ctx) then return false end
   local pw = ctx.settings.point_weights
-  local C = sharp.assemble(P, ctx.segment, { closed = closed(ctx), sigma = 0,
+  local C = sharp.assemble(P, ctx.segment, { closed = closed(ctx), sigma = ctx.segment_sigma or 0,
                                              weights = pw and as_table(pw) or nil })
   ctx.count = C:distinct()
   return C

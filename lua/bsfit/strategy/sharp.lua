@@ -110,9 +110,26 @@ end
 local function piece_curve(P, p, o)
   if p.kind == "line" then return bs.curve.line(p.start, p["end"]), dist(p.start, p["end"]) end
   if p.kind == "arc" then
-    local a0 = math.atan(p.start[2] - p.centre[2], p.start[1] - p.centre[1])
-    return bs.curve.arc { centre = p.centre, radius = p.radius, start = a0, sweep = p.sweep },
-           p.radius * math.abs(p.sweep)
+    -- through both ends exactly: the centre moved to the ends' perpendicular bisector
+    -- (on noisy data a tangent join lies within the tolerance of the circle, not on it;
+    -- on exact data nothing moves)
+    local a, b, c = p.start, p["end"], p.centre
+    local mx, my, dx, dy = (a[1] + b[1]) / 2, (a[2] + b[2]) / 2, b[1] - a[1], b[2] - a[2]
+    local l2 = dx * dx + dy * dy
+    if l2 > 0 then
+      local t = ((c[1] - mx) * dx + (c[2] - my) * dy) / l2
+      c = { c[1] - t * dx, c[2] - t * dy }
+    end
+    local r = dist(a, c)
+    local a0, a1 = math.atan(a[2] - c[2], a[1] - c[1]), math.atan(b[2] - c[2], b[1] - c[1])
+    local sweep = a1 - a0
+    if p.sweep > 0 then
+      while sweep <= 0 do sweep = sweep + 2 * math.pi end
+    else
+      while sweep >= 0 do sweep = sweep - 2 * math.pi end
+    end
+    if l2 == 0 then sweep = p.sweep end -- a whole circle
+    return bs.curve.arc { centre = c, radius = r, start = a0, sweep = sweep }, r * math.abs(sweep)
   end
   local C = free_run(P, p, o)
   return C, math.max(C:length(), 1e-300)
