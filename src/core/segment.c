@@ -275,9 +275,10 @@ static int touching(const section *s, const model *ma, const model *mb, double *
 }
 
 /* Is x where A (last sample qa) may meet B (first sample qb)? Beyond qa along A, before
-** qb along B, and within reach of both (as far as the pieces' own spacing). */
+** qb along B (by `slack` at most), and within reach of both (as far as the pieces' own
+** spacing). */
 static int in_gap(const section *s, const bsfit_piece *A, const model *ma, const bsfit_piece *B,
-                  const model *mb, const double *x) {
+                  const model *mb, const double *x, double slack) {
   const double *qa = sample(s, A->first + A->count - 1), *qb = sample(s, B->first);
   double ta[2], tb[2], f[2], chord = hypot(qb[0] - qa[0], qb[1] - qa[1]);
   double reach_a = 1.5 * max_spacing(s, A) + chord + s->tol;
@@ -286,8 +287,8 @@ static int in_gap(const section *s, const bsfit_piece *A, const model *ma, const
   foot(mb, qb, f, tb);
   if (hypot(x[0] - qa[0], x[1] - qa[1]) > reach_a || hypot(x[0] - qb[0], x[1] - qb[1]) > reach_b)
     return 0;
-  if ((x[0] - qa[0]) * ta[0] + (x[1] - qa[1]) * ta[1] < -2 * s->tol) return 0;
-  return (qb[0] - x[0]) * tb[0] + (qb[1] - x[1]) * tb[1] >= -2 * s->tol;
+  if ((x[0] - qa[0]) * ta[0] + (x[1] - qa[1]) * ta[1] < -slack) return 0;
+  return (qb[0] - x[0]) * tb[0] + (qb[1] - x[1]) * tb[1] >= -slack;
 }
 
 /* Where A and B meet: their touching point (a tangent join), or the meeting point of
@@ -299,14 +300,20 @@ static int meet(const section *s, const bsfit_piece *A, const model *ma, const b
   const double *qa = sample(s, A->first + A->count - 1), *qb = sample(s, B->first);
   double cand[2][2], best = HUGE_VAL, ta[2], tb[2], f[2], lim, angle;
   int nc = 0, k, found = 0;
-  if (touching(s, ma, mb, x)) return in_gap(s, A, ma, B, mb, x) ? BSFIT_JOIN_TANGENT : 0;
+  if (touching(s, ma, mb, x)) {
+    /* models that touch stay within tol of each other for sqrt(2 r tol) on either side
+    ** of the touching point: a sample that far past it fits either piece */
+    double r = ma->kind == ARC ? ma->circle.r : mb->circle.r;
+    if (ma->kind == ARC && mb->kind == ARC && mb->circle.r < r) r = mb->circle.r;
+    return in_gap(s, A, ma, B, mb, x, fmax(2 * s->tol, sqrt(2 * r * s->tol))) ? BSFIT_JOIN_TANGENT : 0;
+  }
   if (ma->kind == LINE && mb->kind == LINE) nc = bsfit__meet_lines(&ma->line, &mb->line, cand[0]);
   else if (ma->kind == LINE) nc = bsfit__meet_line_circle(&ma->line, &mb->circle, cand);
   else if (mb->kind == LINE) nc = bsfit__meet_line_circle(&mb->line, &ma->circle, cand);
   else nc = bsfit__meet_circles(&ma->circle, &mb->circle, cand);
   for (k = 0; k < nc; k++) {
     double *c = cand[k], d = hypot(c[0] - qa[0], c[1] - qa[1]) + hypot(c[0] - qb[0], c[1] - qb[1]);
-    if (in_gap(s, A, ma, B, mb, c) && d < best) best = d, x[0] = c[0], x[1] = c[1], found = 1;
+    if (in_gap(s, A, ma, B, mb, c, 2 * s->tol) && d < best) best = d, x[0] = c[0], x[1] = c[1], found = 1;
   }
   if (!found) return 0;
   foot(ma, x, f, ta);
@@ -552,6 +559,92 @@ static size_t cover(const section *s, size_t *const len[2], cell *prim, cell *fr
   return best_np;
 }
 
+/* Under noise a line may take the first samples of the fillet after it (they lie within
+** the tolerance of both): each boundary sample goes to the neighbour whose model it
+** fits better, and both are refitted; a few rounds. */
+static void rebalance(const section *s, bsfit_piece *p, model *md, size_t np) {
+  size_t i, round;
+  for (round = 0; round < 3; round++) {
+    int moved = 0;
+    for (i = 0; i < np; i++) {
+      size_t ib = (i + 1) % np;
+      bsfit_piece *A = &p[i], *B = &p[ib];
+      if ((!s->closed && ib == 0) || np < 2 || A->kind == FREE || B->kind == FREE) continue;
+      if (B->first != (A->first + A->count) % s->m) continue; /* shared sample: a corner */
+      while (A->count > s->min_len[A->kind] + 1 &&
+             model_dist(&md[ib], sample(s, A->first + A->count - 1)) <
+                 model_dist(&md[i], sample(s, A->first + A->count - 1)))
+        A->count--, B->first = (B->first + s->m - 1) % s->m, B->count++, moved = 1;
+      while (B->count > s->min_len[B->kind] + 1 &&
+             model_dist(&md[i], sample(s, B->first)) < model_dist(&md[ib], sample(s, B->first)))
+        B->count--, B->first = (B->first + 1) % s->m, A->count++, moved = 1;
+      if (moved) {
+        refit(s, A, &md[i]);
+        refit(s, B, &md[ib]);
+      }
+    }
+    if (!moved) break;
+  }
+}
+
+/* A fillet: an arc meeting a line tangentially at both ends. Its circle is then known
+** from the two lines up to its radius (its centre on the bisector of their corner), so
+** it is refitted with that one unknown (Gauss-Newton on the geometric distances): a
+** short noisy arc alone leaves its radius uncertain by many percent, the lines fix all
+** but one of its parameters. The tangent points move to the new circle. */
+static void refit_fillet(const section *s, bsfit_piece *A, const model *ma, bsfit_piece *F,
+                         model *mf, bsfit_piece *B, const model *mb) {
+  double V[2], u[2], k, r = mf->circle.r, c[2], f[2], t[2], rms = 0, un, cosphi;
+  int it;
+  size_t j;
+  if (!bsfit__meet_lines(&ma->line, &mb->line, V)) return;
+  u[0] = mb->line.d[0] - ma->line.d[0];
+  u[1] = mb->line.d[1] - ma->line.d[1];
+  un = hypot(u[0], u[1]);
+  cosphi = -(ma->line.d[0] * mb->line.d[0] + ma->line.d[1] * mb->line.d[1]);
+  if (!(un > 1e-12) || cosphi >= 1 - 1e-12) return;
+  u[0] /= un, u[1] /= un;
+  k = 1.0 / sin(0.5 * acos(fmax(-1.0, fmin(1.0, cosphi))));
+  for (it = 0; it < 20; it++) {
+    double g = 0, h = 0, step;
+    for (j = 0; j < F->count; j++) {
+      const double *q = sample(s, F->first + j);
+      double dx = q[0] - V[0] - u[0] * k * r, dy = q[1] - V[1] - u[1] * k * r, d = hypot(dx, dy);
+      double e = d - r, de = d > 0 ? -(dx * u[0] + dy * u[1]) * k / d - 1.0 : -1.0;
+      g += de * e;
+      h += de * de;
+    }
+    if (!(h > 0)) return;
+    step = -g / h;
+    r += step;
+    if (!(r > 0)) return;
+    if (fabs(step) <= 1e-15 * r) break;
+  }
+  c[0] = V[0] + u[0] * k * r;
+  c[1] = V[1] + u[1] * k * r;
+  mf->circle.c[0] = c[0], mf->circle.c[1] = c[1], mf->circle.r = r;
+  F->centre[0] = c[0], F->centre[1] = c[1], F->radius = r;
+  foot(ma, c, f, t);
+  memcpy(A->end, f, sizeof f), memcpy(F->start, f, sizeof f);
+  foot(mb, c, f, t);
+  memcpy(B->start, f, sizeof f), memcpy(F->end, f, sizeof f);
+  foot(mf, F->start, f, F->t_start);
+  foot(mf, F->end, f, F->t_end);
+  F->max = bsfit__circle_max(&mf->circle, &(bsfit__run){s->pts, s->m, F->first, F->count}, &rms);
+  F->rms = rms;
+}
+
+static void refit_fillets(const section *s, bsfit_piece *p, model *md, size_t np) {
+  size_t i;
+  for (i = 0; i < np; i++) {
+    size_t ia = (i + np - 1) % np, ib = (i + 1) % np;
+    if (p[i].kind != ARC || np < 3 || p[ia].kind != LINE || p[ib].kind != LINE) continue;
+    if (!s->closed && (i == 0 || i + 1 == np)) continue;
+    if (p[i].join != BSFIT_JOIN_TANGENT || p[ib].join != BSFIT_JOIN_TANGENT) continue;
+    refit_fillet(s, &p[ia], &md[ia], &p[i], &md[i], &p[ib], &md[ib]);
+  }
+}
+
 /* Models, ends and sweeps of the np pieces of the cover (p has room for 2 np). */
 static size_t finish_pieces(const section *s, bsfit_piece *p, model *md, size_t np) {
   size_t i;
@@ -560,6 +653,7 @@ static size_t finish_pieces(const section *s, bsfit_piece *p, model *md, size_t 
     if (p[i].kind != FREE) refit(s, &p[i], &md[i]);
   }
   short_runs(s, p, md, np);
+  rebalance(s, p, md, np);
   if (np == 1 && s->closed && p[0].kind == ARC) { /* a whole circle */
     foot(&md[0], sample(s, p[0].first), p[0].start, p[0].t_start);
     memcpy(p[0].end, p[0].start, sizeof p[0].end);
@@ -576,6 +670,7 @@ static size_t finish_pieces(const section *s, bsfit_piece *p, model *md, size_t 
   }
   np = place_ends(s, p, md, np);
   if (!s->closed) open_ends(s, p, md, np);
+  refit_fillets(s, p, md, np);
   for (i = 0; i < np; i++) {
     if (p[i].kind == LINE) set_line_ends(&p[i], &md[i]);
     if (p[i].kind == ARC) set_arc_sweep(&p[i], &md[i], 0);

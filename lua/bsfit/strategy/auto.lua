@@ -514,21 +514,26 @@ end
 --     drawn along a smooth curve), and every corner turns by 15 degrees at least and is
 --     worth 25 sigma^2 over one smooth curve through both its sides (EVIDENCE).
 -- Returns the pieces, or {} (one smooth curve).
-local EVIDENCE, MIN_TURN = 25, 15
+local EVIDENCE, MIN_TURN, AGREE = 25, 15, 1.25
 
 local function noisy_pieces(P, ctx)
   local s = common.ok("noise of the pieces", bs.geom.segment_sigma(P, { closed = closed(ctx) }))
-  if not (s > 0 and s < 1.6 * ctx.sigma) then return nil end
+  if not (s > 0 and s < AGREE * ctx.sigma) then return nil end
   local pieces = common.ok("segmentation", bs.geom.segment(P, { closed = closed(ctx), sigma = s }))
   local held = 0
   for i, p in ipairs(pieces) do
     if p.kind ~= "free" then held = held + p.count end
+    if p.kind == "free" and p.count == 0 then return nil end -- two models that do not meet
     if p.join == "corner" and (p.turn < MIN_TURN or p.evidence < EVIDENCE) then return nil end
     local q = pieces[(i - 2) % #pieces + 1]
     if p.join == "tangent" and p.kind == "line" and q.kind == "line" and #pieces > 1 then return nil end
   end
   if held < 0.9 * #P then return nil end
-  ctx.segment_sigma = s
+  -- the curve itself must stay within the noise of every sample (6 sigma)
+  local C = sharp.assemble(P, pieces, { closed = closed(ctx), sigma = s })
+  local _, d = C:closest_many(P)
+  if d:max() > 6 * s then return nil end
+  ctx.segment_sigma, ctx.sharp_curve = s, C
   return pieces
 end
 
@@ -718,8 +723,8 @@ end
 function steps.assemble(P, ctx)
   if not sharp_path(ctx) then return false end
   local pw = ctx.settings.point_weights
-  local C = sharp.assemble(P, ctx.segment, { closed = closed(ctx), sigma = ctx.segment_sigma or 0,
-                                             weights = pw and as_table(pw) or nil })
+  local C = ctx.sharp_curve or sharp.assemble(P, ctx.segment, {
+    closed = closed(ctx), sigma = ctx.segment_sigma or 0, weights = pw and as_table(pw) or nil })
   ctx.count = C:distinct()
   return C
 end
