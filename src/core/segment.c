@@ -646,6 +646,25 @@ static void refit_fillets(const section *s, bsfit_piece *p, model *md, size_t np
 }
 
 /* Models, ends and sweeps of the np pieces of the cover (p has room for 2 np). */
+/* Does one arc holding every sample of a closed section go round its circle? The closing
+** step (from the last sample to the first, around the centre in the samples' direction)
+** must be no longer than 1.5 times the longest of the others: half a circle is an open
+** arc, however exactly it is sampled. */
+static int goes_round(const section *s, const bsfit_piece *p, const model *md) {
+  double longest = 0, closing = 0;
+  size_t k;
+  for (k = 0; k < p->count; k++) { /* the last step, k = count - 1, closes the section */
+    const double *a = sample(s, p->first + k), *b = sample(s, p->first + k + 1);
+    double ax = a[0] - md->circle.c[0], ay = a[1] - md->circle.c[1];
+    double bx = b[0] - md->circle.c[0], by = b[1] - md->circle.c[1];
+    double t = md->orient * atan2(ax * by - ay * bx, ax * bx + ay * by);
+    if (t < 0) t += 2 * PI;
+    if (k + 1 == p->count) closing = t;
+    else if (t > longest) longest = t;
+  }
+  return closing <= 1.5 * longest;
+}
+
 static size_t finish_pieces(const section *s, bsfit_piece *p, model *md, size_t np) {
   size_t i;
   for (i = 0; i < np; i++) {
@@ -654,7 +673,7 @@ static size_t finish_pieces(const section *s, bsfit_piece *p, model *md, size_t 
   }
   short_runs(s, p, md, np);
   rebalance(s, p, md, np);
-  if (np == 1 && s->closed && p[0].kind == ARC) { /* a whole circle */
+  if (np == 1 && s->closed && p[0].kind == ARC && goes_round(s, &p[0], &md[0])) { /* a whole circle */
     foot(&md[0], sample(s, p[0].first), p[0].start, p[0].t_start);
     memcpy(p[0].end, p[0].start, sizeof p[0].end);
     memcpy(p[0].t_end, p[0].t_start, sizeof p[0].t_end);

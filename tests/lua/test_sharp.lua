@@ -245,3 +245,77 @@ T.test("noisy sections of lines and arcs: Hausdorff < 3 sigma + 1e-3, corners wi
   print(("# noisy sweep: %d of %d sections through the pieces"):format(sharp_n, total))
   T.ok(sharp_n >= 0.4 * total, ("only %d of %d noisy sections through the pieces"):format(sharp_n, total))
 end)
+
+T.test("open or closed from the data: every generated case decided right, both overrides honoured", function()
+  local synth = require "synth"
+  -- closed: every outline, 4 and 6 samples per side, even and uneven, noise 1e-3;
+  -- open: the first 60% of each outline sampled at 10 per side (fewer samples leave the
+  -- gap of a part of an outline as short as a step of the whole: ambiguous, reported)
+  local closed_cases, open_cases = {}, {}
+  for _, name in ipairs(NAMES) do
+    for _, per in ipairs { 4, 6, 10 } do
+      for _, uneven in ipairs { false, true } do
+        local pts = shapes.sample(ALL[name], per, { uneven = uneven, seed = per, sigma = 1e-3 * shapes.size(ALL[name]) })
+        if per < 10 then closed_cases[#closed_cases + 1] = { name = name .. " " .. per, pts = pts } end
+        local part = {}
+        for i = 1, math.floor(0.6 * #pts) do part[i] = pts[i] end
+        if per == 10 then open_cases[#open_cases + 1] = { name = name .. " " .. per .. " part", pts = part } end
+      end
+    end
+  end
+  for name, f in pairs(synth.smooth) do
+    local half = {}
+    for i, p in ipairs(synth.sample_smooth(f, 200, true)) do if i <= 100 then half[i] = p end end
+    open_cases[#open_cases + 1] = { name = name .. " half", pts = half }
+  end
+  for name, f in pairs(synth.smooth) do
+    closed_cases[#closed_cases + 1] = { name = name, pts = synth.sample_smooth(f, 200, true) }
+  end
+  local sine = {}
+  for i = 0, 199 do sine[#sine + 1] = { i / 199 * 4 * math.pi, math.sin(i / 199 * 4 * math.pi) } end
+  open_cases[#open_cases + 1] = { name = "sine", pts = sine }
+  for _, c in ipairs(closed_cases) do
+    local _, rep = auto.run(bs.points.new(c.pts))
+    T.eq(rep.closed, true, c.name .. ": closed")
+  end
+  for _, c in ipairs(open_cases) do
+    local C, rep = auto.run(bs.points.new(c.pts))
+    T.eq(rep.closed, false, c.name .. ": open")
+    T.ok(not C:is_periodic(), c.name .. ": an open curve")
+  end
+  -- overrides: a closed section fitted open, the sine fitted closed
+  local _, r1 = auto.run(bs.points.new(closed_cases[1].pts), { closed = false })
+  T.eq(r1.closed, false)
+  local C2, r2 = auto.run(bs.points.new(sine), { closed = true })
+  T.ok(r2.closed and C2:is_periodic(), "closed = true honoured")
+  T.raises({ match = "closed" }, function() auto.run(bs.points.new(sine), { closed = "maybe" }) end)
+end)
+
+T.test("never a loop: down-weighted gross outliers, and a crossing that remains is reported", function()
+  local synth = require "synth"
+  -- an ellipse with 25 gross outliers of weight 1e-3 (the issue's case)
+  for seed = 1, 3 do
+    local pts = synth.sample_smooth(synth.smooth.ellipse, 300, false)
+    local uniform = synth.rng(seed)
+    local w = {}
+    for i = 1, #pts do w[i] = 1 end
+    for k = 1, 25 do
+      local i = math.floor(uniform() * #pts) + 1
+      local s = 1 + (uniform() - 0.5) * 0.8
+      pts[i] = { pts[i][1] * s, pts[i][2] * s }
+      w[i] = 1e-3
+    end
+    local C, rep = auto.run(synth.noisy(pts, 1e-3, seed), { point_weights = bs.vector.new(w) })
+    T.eq((bs.geom.self_intersections(C, 4000)), 0, "ellipse with outliers, seed " .. seed)
+    T.eq(rep.crossings, 0)
+  end
+  -- a figure eight: the data crosses itself, so must the curve; it is reported
+  local eight = {}
+  for i = 0, 79 do
+    local t = 2 * math.pi * i / 80
+    eight[#eight + 1] = { math.sin(t), math.sin(t) * math.cos(t) }
+  end
+  local _, rep = auto.run(bs.points.new(eight), { closed = true })
+  T.ok(rep.crossings > 0, "figure eight: crossings " .. rep.crossings)
+  T.ok(rep.warnings and rep.warnings[#rep.warnings]:match("crosses itself"), "warning")
+end)

@@ -27,6 +27,7 @@ usage: bsfit reconstruct [INPUT...] [options]
   --count N|auto   control points (default auto: the paper's inversion / 50% rule)
   --tol T          auto, periodic: add control points until the max deviation is <= T
   --open           fit open curves (auto and periodic strategies)
+  --closed         fit closed curves (auto decides from the data when neither is given)
   --samples K      curve samples written to <name>.csv (default 1000)
   --format LIST    any of json,svg,csv,iges (default json,svg,csv)
   -j N             run N sections at a time, one Lua state per worker (default 1)
@@ -80,6 +81,7 @@ local flags = {
 }
 local switches = {
   ["--open"] = function(o) o.open = true end,
+  ["--closed"] = function(o) o.closed = true end,
   ["-q"] = function(o) o.quiet = true end,
   ["-h"] = function(o) o.help = true end,
   ["--help"] = function(o) o.help = true end,
@@ -112,6 +114,7 @@ function M.parse(args)
   end
   if o.tol and o.strategy == "carvalho" then error("--tol needs --strategy auto or periodic (or a FILE.lua)", 0) end
   if o.open and o.strategy == "carvalho" then error("--open needs --strategy auto or periodic (or a FILE.lua)", 0) end
+  if o.open and o.closed then error("--open and --closed contradict each other", 0) end
   return o
 end
 
@@ -280,6 +283,7 @@ local function strategy_opts(spec, w)
   if spec.count then o.count = spec.count end
   if spec.tol then o.tol = spec.tol end
   if spec.open then o.closed = false end
+  if spec.closed and spec.strategy ~= "carvalho" then o.closed = true end -- carvalho: always closed
   if w then o.point_weights = w end
   return o
 end
@@ -300,6 +304,13 @@ function M.section(spec)
     row.rms, row.max, row.max_index = rep.rms, rep.max, rep.max_index
     row.max_trusted = rep.max_trusted -- set when the file down-weights some points
     row.start_index = rep.start_index
+    -- open or closed as fitted (auto decides from the data), and self-intersections
+    if rep.closed ~= nil then row.closed = rep.closed else row.closed = C:is_periodic() end
+    row.closed = row.closed and "yes" or "no"
+    row.crossings = rep.crossings
+    if rep.closed_ambiguous or (rep.crossings or 0) > 0 then
+      row.notes = table.concat(rep.warnings or {}, "; ")
+    end
     write_outputs(spec, P, C, rep, samples(C, spec.samples))
   end)
   if not ok then
@@ -321,13 +332,13 @@ end
 -- =======================================================================
 
 local summary_columns = { "name", "input", "points", "control_points", "rms", "max", "max_index",
-                          "max_trusted", "start_index", "status", "error" }
+                          "max_trusted", "start_index", "closed", "crossings", "status", "error" }
 
 local function specs_of(o, inputs)
   local specs = {}
   for i, inp in ipairs(inputs) do
     specs[i] = { path = inp.path, name = inp.name, outdir = o.outdir, strategy = o.strategy,
-                 degree = o.degree, count = o.count, tol = o.tol, open = o.open,
+                 degree = o.degree, count = o.count, tol = o.tol, open = o.open, closed = o.closed,
                  samples = o.samples, formats = o.formats }
   end
   return specs
@@ -414,6 +425,7 @@ function M.main(args)
   end
   local failed = 0
   for _, r in ipairs(rows) do
+    if r.notes then warn("%s: %s", r.input, r.notes) end
     if r.status ~= "ok" then
       failed = failed + 1
       warn("%s: %s", r.input, r.error)

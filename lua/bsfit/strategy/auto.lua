@@ -44,12 +44,12 @@ local sharp = require "bsfit.strategy.sharp"
 
 local M = { name = "auto" }
 
-M.settings = { degree = 3, param = "chord", closed = true, trust = 0.1, correct = 3,
+M.settings = { degree = 3, param = "chord", closed = "auto", trust = 0.1, correct = 3,
                robust = false, huber = 1.345, solver = "auto" }
 M.optional = { point_weights = true, tol = true, count_max = true }
 
-M.order = { "sigma", "segment", "params", "weights", "corners", "count", "fit", "assemble",
-            "reweight", "measure" }
+M.order = { "ends", "sigma", "segment", "params", "weights", "corners", "count", "fit",
+            "assemble", "reweight", "loops", "measure" }
 
 local steps = {}
 M.steps = steps
@@ -65,6 +65,14 @@ local function as_table(v)
 end
 
 local function closed(ctx) return common.closed(ctx) end
+
+local size_of, count_range
+
+-- Adds a warning for rep.warnings.
+local function warn(ctx, msg)
+  ctx.warnings = ctx.warnings or {}
+  ctx.warnings[#ctx.warnings + 1] = msg
+end
 
 -- Is the section made into one curve of lines, arcs and free runs (the segment step
 -- found features), rather than fitted as one smooth curve? Not when a step it would
@@ -541,7 +549,8 @@ function steps.segment(P, ctx)
   -- down-weighted points and Huber reweighting ask for a fit that discounts samples: the
   -- pieces follow every sample they hold, so such sections take the smooth path
   if P:dim() ~= 2 or #P < 6 or ctx.settings.robust or common.trusted(ctx) then return {} end
-  local pieces = common.ok("segmentation", bs.geom.segment(P, { closed = closed(ctx) }))
+  local pieces = ctx.cache.exact_pieces or
+                 common.ok("segmentation", bs.geom.segment(P, { closed = closed(ctx) }))
   if sharp.has_features(pieces, #P) then ctx.segment_sigma = 0; return pieces end
   if #P <= 5000 then return noisy_pieces(P, ctx) or {} end
   return {}
@@ -553,6 +562,73 @@ function steps.params(P, ctx)
   if u then return u end
   return common.ok("params", bs.params_trusted(P, ctx.settings.param, {
     closed = closed(ctx), weights = ctx.settings.point_weights, trust = ctx.settings.trust }))
+end
+
+-- Open or closed (setting closed = "auto", the default): from the gap between the last
+-- and the first point against the steps next to them (the two at each end, h_loc: a
+-- closed section's closing step is like its neighbours, while sections sampled sparsely
+-- along long sides have steps far longer elsewhere) and twice the median step, h =
+-- max(h_loc, 2 h_med). A gap up to 1.5 h closes the section; one above 2.5 h opens it;
+-- between, the section is closed when the closing chord continues both ends (turns by
+-- at most 100 degrees from the last step and into the first: an open run's ends point
+-- away from each other), and the decision is reported as ambiguous (rep.closed_ambiguous,
+-- a warning). Exact lines and arcs that cover the section and meet across the gap close
+-- it in any case. closed = true or false is taken as given.
+function steps.ends(P, ctx)
+  local c = ctx.settings.closed
+  if c == true or c == false then return c and "closed" or "open" end
+  if c ~= "auto" then
+    error("bad argument #2 to 'run' (option 'closed' must be true, false or \"auto\")", 0)
+  end
+  local m = #P
+  local function step(i, j)
+    local a, b, d2 = { P:get(i) }, { P:get(j) }, 0
+    for k = 1, #a do d2 = d2 + (a[k] - b[k]) ^ 2 end
+    return math.sqrt(d2)
+  end
+  -- the steps between distinct points (repeated points take no part)
+  local all = {}
+  for i = 1, m - 1 do
+    local d = step(i, i + 1)
+    if d > 0 then all[#all + 1] = d end
+  end
+  if #all == 0 then ctx.settings.closed = true; return "closed" end -- coincident: the fit says so
+  local hloc = math.max(all[1], all[math.min(2, #all)], all[#all], all[math.max(#all - 1, 1)])
+  table.sort(all)
+  local hmed = all[(#all + 1) // 2]
+  local gap, h = step(m, 1), math.max(hloc, 2 * hmed)
+  local closed_, clear
+  if gap <= 1.5 * h then closed_, clear = true, true
+  elseif gap > 2.5 * h then closed_, clear = false, true
+  else
+    local function turn(i, j, k) -- degrees between steps i->j and j->k
+      local a, b, c = { P:get(i) }, { P:get(j) }, { P:get(k) }
+      local dot, na, nb = 0, 0, 0
+      for q = 1, #a do
+        local u, v = b[q] - a[q], c[q] - b[q]
+        dot, na, nb = dot + u * v, na + u * u, nb + v * v
+      end
+      if na == 0 or nb == 0 then return 0 end
+      return math.deg(math.acos(math.max(-1, math.min(1, dot / math.sqrt(na * nb)))))
+    end
+    closed_, clear = math.max(turn(m - 1, m, 1), turn(m, 1, 2)) <= 100, false
+  end
+  -- exact lines and arcs that meet across the gap close it, whatever the spacing
+  if not closed_ and P:dim() == 2 and m >= 6 then
+    local pieces = bs.geom.segment(P, { closed = true })
+    if pieces and sharp.has_features(pieces, m) then
+      local meet = true
+      for _, p in ipairs(pieces) do if p.kind == "free" and p.count == 0 then meet = false end end
+      if meet then closed_, clear, ctx.cache.exact_pieces = true, true, pieces end
+    end
+  end
+  ctx.settings.closed = closed_
+  if not clear then
+    ctx.closed_ambiguous = true
+    warn(ctx, ("open or closed is ambiguous (gap %.3g between the last and first points, steps "
+      .. "%.3g near them): fitted %s; say --open or --closed"):format(gap, hloc, closed_ and "closed" or "open"))
+  end
+  return closed_ and "closed" or "open"
 end
 
 function steps.sigma(P, ctx)
@@ -634,7 +710,7 @@ function steps.corners(P, ctx)
 end
 
 -- The smallest and largest counts the search may try.
-local function count_range(P, ctx)
+function count_range(P, ctx)
   local m, p = #P, ctx.settings.degree
   local nmin = math.max(p + 1, closed(ctx) and (#ctx.corners * p + 4) or 0, math.min(8, m // 2))
   -- small sections may use as many as the paper's 50% rule; large ones a third,
@@ -656,7 +732,7 @@ end
 -- noise level is never reached, stop when two steps in a row improve less than 2% on
 -- the best fit (knots move with the count, so more is not always better) and keep the
 -- best. With tol: grow until the maximum distance is at most tol.
-local function size_of(P)
+function size_of(P)
   local m, b, size = #P, { P:get(1) }, 0
   for i = 2, m, math.max(1, m // 64) do
     local q, dd = { P:get(i) }, 0
@@ -748,6 +824,36 @@ function steps.reweight(P, ctx)
   return C
 end
 
+-- Never a loop: a closed 2D curve is checked for self-intersection (a sweep over 2000
+-- samples in C). A smooth fit that crosses itself is refitted with fewer control points
+-- (0.8 times, three times at most); a crossing that remains, or one of the pieces' curve,
+-- is reported in rep.warnings and rep.crossings. Returns the number of crossings.
+function steps.loops(P, ctx)
+  local C = ctx.curve
+  if not closed(ctx) or P:dim() ~= 2 then return 0 end
+  local k = math.max(2000, 8 * C:distinct())
+  local n, where = bs.geom.self_intersections(C, k)
+  local tries = 0
+  while n > 0 and not sharp_path(ctx) and tries < 3 and ctx.opts.count == nil do
+    local lo = select(1, count_range(P, ctx))
+    local fewer = math.max(lo, math.floor(0.8 * ctx.count))
+    if fewer >= ctx.count then break end
+    local C2, u, d = fit_corrected(ctx, P, fewer, ctx.sub and 1 or ctx.settings.correct)
+    local n2, w2 = bs.geom.self_intersections(C2, k)
+    tries = tries + 1
+    ctx.count = fewer
+    if n2 < n or n2 == 0 then
+      C, n, where = C2, n2, w2
+      ctx.curve, ctx.params_final, ctx.distances, ctx.distances_of = C2, u, d, C2
+    end
+  end
+  if n > 0 then
+    warn(ctx, ("the curve crosses itself (%d crossing%s, first near parameter %.4g)"):format(
+      n, n == 1 and "" or "s", where))
+  end
+  return n
+end
+
 function steps.measure(P, ctx)
   if sharp_path(ctx) then return common.measure(P, ctx) end
   local d = ctx.distances -- the fit's last projection, when it is of this very curve
@@ -770,7 +876,14 @@ function M.report(ctx)
   rep.corners = ctx.corners
   rep.tries = ctx.tries
   rep.closed = closed(ctx)
+  rep.closed_ambiguous = ctx.closed_ambiguous or false
+  rep.crossings = ctx.loops or 0
   if sharp_path(ctx) then rep.pieces = ctx.segment end
+  -- warnings: appended to those the common report may already carry
+  if ctx.warnings and #ctx.warnings > 0 then
+    rep.warnings = rep.warnings or {}
+    for _, w in ipairs(ctx.warnings) do rep.warnings[#rep.warnings + 1] = w end
+  end
   return rep
 end
 
