@@ -96,13 +96,16 @@ BSFIT_API bsfit_err bsfit_segment(const double *pts, size_t m, int dim,
 ** samples of a contour that bends between them make window-based estimates
 ** (bsfit_noise_sigma) many times too large; this one is not, where lines and arcs hold
 ** the samples. Cost: up to ~30 segmentations (typically 10-20).
+** @param[in]  max_sigma the highest level tried (<= 0: 5% of the size): a caller that
+**                   will not believe a larger one saves the costly high levels, where
+**                   runs grow long.
 ** @param[out] sigma the estimate; 0 when every line and arc is exact to 1e-10 of the
-**                   size, or when no level up to 5% of the size explains the section
-**                   (then lines and arcs do not hold it).
+**                   size, or when no level up to max_sigma explains the section (then
+**                   lines and arcs do not hold it).
 ** @return BSFIT_OK or the codes of bsfit_segment. */
 BSFIT_API bsfit_err bsfit_segment_sigma(const double *pts, size_t m, int dim, int closed,
-                                        double *sigma, const bsfit_allocator *a,
-                                        bsfit_status *st);
+                                        double max_sigma, double *sigma,
+                                        const bsfit_allocator *a, bsfit_status *st);
 
 /** A straight segment from a to b as a degree-3 curve on [0, 1] with four collinear,
 ** evenly spaced control points (its speed is constant). dim 1..4. */

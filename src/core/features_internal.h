@@ -33,10 +33,11 @@ static inline const double *bsfit__run_at(const bsfit__run *r, size_t k) {
 /* Total least-squares line of the run (n >= 2); 0 when its points coincide. */
 int bsfit__fit_line(const bsfit__run *r, bsfit__line *L);
 
-/* Geometric least-squares circle of the run (n >= 3), by Gauss-Newton from the circle
+/* Geometric least-squares circle of the run (n >= 3), by Gauss-Newton from `init` (a
+** nearby run's circle: it then settles in a step or two) or, when NULL, from the circle
 ** through its first, middle and last samples; 0 when they are collinear or it does not
 ** settle. */
-int bsfit__fit_circle(const bsfit__run *r, bsfit__circle *C);
+int bsfit__fit_circle(const bsfit__run *r, const bsfit__circle *init, bsfit__circle *C);
 
 double bsfit__line_dist(const bsfit__line *L, const double *x);
 double bsfit__circle_dist(const bsfit__circle *C, const double *x);

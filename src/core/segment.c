@@ -54,8 +54,8 @@ static bsfit__run run_of(const section *s, size_t first, size_t n) {
 
 /* fits a model of `kind` to n samples from `first`; its largest distance (HUGE_VAL
 ** when it cannot be fitted) */
-static double fit_model(const section *s, int kind, size_t first, size_t n, model *md,
-                        double *rms) {
+static double fit_model_from(const section *s, int kind, size_t first, size_t n,
+                             const model *warm, model *md, double *rms) {
   bsfit__run r = run_of(s, first, n);
   double turn = 0;
   size_t k;
@@ -64,7 +64,8 @@ static double fit_model(const section *s, int kind, size_t first, size_t n, mode
     if (!bsfit__fit_line(&r, &md->line)) return HUGE_VAL;
     return bsfit__line_max(&md->line, &r, rms);
   }
-  if (!bsfit__fit_circle(&r, &md->circle)) return HUGE_VAL;
+  if (!bsfit__fit_circle(&r, warm && warm->kind == ARC ? &warm->circle : NULL, &md->circle))
+    return HUGE_VAL;
   /* the direction the samples go round the centre */
   for (k = 0; k + 1 < n; k++) {
     const double *p = bsfit__run_at(&r, k), *q = bsfit__run_at(&r, k + 1);
@@ -74,6 +75,11 @@ static double fit_model(const section *s, int kind, size_t first, size_t n, mode
   }
   md->orient = turn >= 0 ? 1.0 : -1.0;
   return bsfit__circle_max(&md->circle, &r, rms);
+}
+
+static double fit_model(const section *s, int kind, size_t first, size_t n, model *md,
+                        double *rms) {
+  return fit_model_from(s, kind, first, n, NULL, md, rms);
 }
 
 static double model_dist(const model *md, const double *x) {
@@ -88,28 +94,71 @@ static double model_dist(const model *md, const double *x) {
 ** when fewer than its minimum). Two pointers: a run from i+1 is at least the run from
 ** i less one sample, so each start resumes where the previous stopped; a sample that
 ** the current model misses triggers one refit before the run ends. O(m r). */
+/* A quick no for a seed of minl samples: the line through its ends (the circle through
+** its ends and middle) misses one of them by far more than any least-squares model
+** could spread (3 tol for a line, 8 for a circle). */
+static int seed_misses(const section *s, int kind, size_t i, size_t n) {
+  const double *a = sample(s, i), *b = sample(s, i + n - 1);
+  size_t k;
+  if (kind == LINE) {
+    double dx = b[0] - a[0], dy = b[1] - a[1], l = hypot(dx, dy);
+    if (!(l > 0)) return 0;
+    for (k = 1; k + 1 < n; k++) {
+      const double *q = sample(s, i + k);
+      if (fabs((q[0] - a[0]) * dy - (q[1] - a[1]) * dx) / l > 3 * s->tol) return 1;
+    }
+  } else {
+    /* the circle through first, middle and last: a 3-sample run of them */
+    const double *mid = sample(s, i + n / 2);
+    double tri[6] = {a[0], a[1], mid[0], mid[1], b[0], b[1]};
+    bsfit__run t = {tri, 3, 0, 3};
+    bsfit__circle C;
+    if (!bsfit__fit_circle(&t, NULL, &C)) return 0;
+    for (k = 1; k + 1 < n; k++)
+      if (bsfit__circle_dist(&C, sample(s, i + k)) > 8 * s->tol) return 1;
+  }
+  return 0;
+}
+
+/* len[i] = the most samples from i that one model of `kind` explains within tol (0
+** when fewer than its minimum). Two pointers: a run from i+1 is at least the run from
+** i less one sample, so each start resumes where the previous stopped, its model
+** warm-started from the previous one; a sample the current model misses triggers a
+** refit when the run has grown by an eighth since the last (else it ends there). */
 static bsfit_err maximal_runs(const section *s, int kind, size_t *len) {
-  size_t i, prev = 0, nstart = s->closed ? s->m : s->m, minl = s->min_len[kind];
-  model md;
-  for (i = 0; i < nstart; i++) {
+  size_t i, prev = 0, minl = s->min_len[kind];
+  model md, last;
+  int have_last = 0;
+  for (i = 0; i < s->m; i++) {
     size_t limit = s->closed ? s->m : s->m - i;
-    size_t n = prev > minl ? prev - 1 : minl;
+    size_t n = prev > minl ? prev - 1 : minl, good, fitted;
     if ((i & 255) == 0 && bsfit__interrupted(s->a)) return BSFIT_EINTR;
     len[i] = 0;
     if (n > limit || minl > limit) { prev = 0; continue; }
-    if (fit_model(s, kind, i, n, &md, NULL) > s->tol) {
+    if (n == minl && seed_misses(s, kind, i, n)) { prev = 0; have_last = 0; continue; }
+    if (fit_model_from(s, kind, i, n, have_last ? &last : NULL, &md, NULL) > s->tol) {
       n = minl;
-      if (fit_model(s, kind, i, n, &md, NULL) > s->tol) { prev = 0; continue; }
+      if (seed_misses(s, kind, i, n) || fit_model(s, kind, i, n, &md, NULL) > s->tol) {
+        prev = 0, have_last = 0;
+        continue;
+      }
     }
+    good = fitted = n;
     while (n < limit) {
       model next;
       if (model_dist(&md, sample(s, i + n)) <= s->tol) { n++; continue; }
-      if (fit_model(s, kind, i, n + 1, &next, NULL) > s->tol) break;
+      if (8 * (n + 1 - fitted) < n + 1) break;
+      if (fit_model_from(s, kind, i, n + 1, &md, &next, NULL) > s->tol) break;
       md = next;
-      n++;
+      good = fitted = ++n;
     }
-    /* the last samples were judged by an older model: confirm the whole run */
-    while (n > minl && fit_model(s, kind, i, n, &md, NULL) > s->tol) n--;
+    /* the last samples were judged by an older model: confirm the whole run, or fall
+    ** back to the last run a full fit confirmed */
+    if (n > good && fit_model_from(s, kind, i, n, &md, &md, NULL) > s->tol) {
+      n = good;
+      fit_model_from(s, kind, i, n, &md, &md, NULL);
+    }
+    last = md, have_last = 1;
     len[i] = distinct(s, i, n) >= minl ? n : 0;
     prev = n;
   }
@@ -799,8 +848,8 @@ static double pooled_sigma(const bsfit_piece *p, size_t np) {
   return dof > 0 ? sqrt(rss / dof) : -1.0;
 }
 
-bsfit_err bsfit_segment_sigma(const double *pts, size_t m, int dim, int closed, double *sigma,
-                              const bsfit_allocator *a, bsfit_status *st) {
+bsfit_err bsfit_segment_sigma(const double *pts, size_t m, int dim, int closed, double max_sigma,
+                              double *sigma, const bsfit_allocator *a, bsfit_status *st) {
   bsfit_segment_opts o;
   bsfit_piece *p;
   size_t bytes, np = 0;
@@ -825,7 +874,8 @@ bsfit_err bsfit_segment_sigma(const double *pts, size_t m, int dim, int closed, 
   ** 1.2 times the level is the estimate. */
   size = size_of(pts, m);
   s0 = fmax(chord_sigma(pts, m, closed, d) / 16.0, 1e-9 * size);
-  for (round = 0; round < 48 && s0 < 0.05 * size; round++, s0 *= 1.7782794100389228) {
+  if (!(max_sigma > 0)) max_sigma = 0.05 * size;
+  for (round = 0; round < 48 && s0 < 0.05 * size && s0 <= max_sigma; round++, s0 *= 1.7782794100389228) {
     double s1;
     o.sigma = s0;
     if ((round & 7) == 7 && bsfit__interrupted(a)) {

@@ -12,8 +12,8 @@
 ** ["end"] = {x, y}, t_start =, t_end = (unit tangents), centre =, radius =, sweep =
 ** (arcs), turn = (degrees) and evidence = (sigma^2) at corner joins, rms =, max =
 ** (distances of its samples to its model)}.
-**   bs.geom.segment_sigma(P [, {closed = true}]) --> the noise of a section of lines and
-** arcs, read off their own residuals.
+**   bs.geom.segment_sigma(P [, {closed = true, max = 0}]) --> the noise of a section of
+** lines and arcs, read off their own residuals (levels up to `max`; 0: 5% of the size).
 */
 #include "laux.h"
 
@@ -107,12 +107,13 @@ static int features_segment(lua_State *L) {
   return 1;
 }
 
-/* bs.geom.segment_sigma(P [, {closed = true}]) --> sigma */
+/* bs.geom.segment_sigma(P [, {closed = true, max = 0}]) --> sigma */
 static int features_segment_sigma(lua_State *L) {
-  static const char *const names[] = {"closed", NULL};
+  static const char *const names[] = {"closed", "max", NULL};
   bsfit_points_ud *P = bsfit__lua_topoints(L, 1);
   int t = bsfit__lua_opttable(L, 2, names);
   int closed = opt_boolean(L, t, "closed", 1);
+  lua_Number mx = opt_number(L, t, "max", 0);
   bsfit_allocator a = bsfit__lua_allocator(L);
   double sigma = 0;
   bsfit_status st;
@@ -120,7 +121,8 @@ static int features_segment_sigma(lua_State *L) {
   luaL_argcheck(L, P->dim == 2, 1, "2D points expected");
   luaL_argcheck(L, P->n >= 3, 1, "at least 3 points expected");
   bsfit__lua_checkfinite(L, 1, P);
-  e = bsfit_segment_sigma(P->xy, P->n, 2, closed, &sigma, &a, &st);
+  luaL_argcheck(L, mx >= 0, 2, "field 'max' must be >= 0");
+  e = bsfit_segment_sigma(P->xy, P->n, 2, closed, mx, &sigma, &a, &st);
   if (e != BSFIT_OK) return bsfit__lua_result(L, e, &st, 0, 1);
   lua_pushnumber(L, sigma);
   return 1;

@@ -303,9 +303,12 @@ end
 --     worth 25 sigma^2 over one smooth curve through both its sides (EVIDENCE).
 -- Returns the pieces, or {} (one smooth curve).
 local EVIDENCE, MIN_TURN, AGREE = 25, 15, 1.25
+local NOISY_MAX = 500 -- larger noisy sections keep the smooth path (the noise search costs m r)
 
 local function noisy_pieces(P, ctx)
-  local s = common.ok("noise of the pieces", bs.geom.segment_sigma(P, { closed = closed(ctx) }))
+  if not (ctx.sigma > 0) then return nil end
+  local s = common.ok("noise of the pieces", bs.geom.segment_sigma(P, { closed = closed(ctx),
+                                                                      max = AGREE * ctx.sigma }))
   if not (s > 0 and s < AGREE * ctx.sigma) then return nil end
   local pieces = common.ok("segmentation", bs.geom.segment(P, { closed = closed(ctx), sigma = s }))
   local held = 0
@@ -329,10 +332,16 @@ function steps.segment(P, ctx)
   -- down-weighted points and Huber reweighting ask for a fit that discounts samples: the
   -- pieces follow every sample they hold, so such sections take the smooth path
   if P:dim() ~= 2 or #P < 6 or ctx.settings.robust or common.trusted(ctx) then return {} end
+  -- a large section is screened on its subsample first: noisy data has no exact runs
+  local sub = subsample(ctx, P)
+  if sub and not ctx.cache.exact_pieces then
+    local screen = common.ok("segmentation", bs.geom.segment(sub.P, { closed = closed(ctx) }))
+    if not sharp.has_features(screen, #sub.P) then return {} end
+  end
   local pieces = ctx.cache.exact_pieces or
                  common.ok("segmentation", bs.geom.segment(P, { closed = closed(ctx) }))
   if sharp.has_features(pieces, #P) then ctx.segment_sigma = 0; return pieces end
-  if #P <= 5000 then return noisy_pieces(P, ctx) or {} end
+  if #P <= NOISY_MAX then return noisy_pieces(P, ctx) or {} end
   return {}
 end
 
@@ -368,9 +377,15 @@ function steps.ends(P, ctx)
   end
   -- the steps between distinct points (repeated points take no part)
   local all = {}
-  for i = 1, m - 1 do
+  for i = 1, m - 1, math.max(1, (m - 1) // 2000) do -- at most ~2000 steps read
     local d = step(i, i + 1)
     if d > 0 then all[#all + 1] = d end
+  end
+  for _, i in ipairs { m - 2, m - 1 } do -- the last two steps, for h_loc
+    if i >= 1 and (m - 1) > 2000 then
+      local d = step(i, i + 1)
+      if d > 0 then all[#all + 1] = d end
+    end
   end
   if #all == 0 then ctx.settings.closed = true; return "closed" end -- coincident: the fit says so
   local hloc = math.max(all[1], all[math.min(2, #all)], all[#all], all[math.max(#all - 1, 1)])
