@@ -35,7 +35,36 @@ local function line_dist(x, a, b)
   return math.abs((x[1] - a[1]) * dy - (x[2] - a[2]) * dx) / math.sqrt(dx * dx + dy * dy)
 end
 
-T.test("clean sections of lines and arcs: corners exact, curve within 1e-9 of the size everywhere", function()
+-- lines straight to 1e-12 of the size, arcs on circles of the true radius to 1e-9
+local function check_pieces(C, rep, o, size, what)
+  local a, b = C:domain()
+  for i, p in ipairs(rep.pieces or {}) do
+    local r0, r1 = a + (b - a) * p.range[1], a + (b - a) * p.range[2]
+    if p.kind == "line" then
+      local worst = 0
+      for k = 0, 16 do
+        local x = { C:eval(r0 + (r1 - r0) * k / 16) }
+        worst = math.max(worst, line_dist(x, p.start, p["end"]))
+      end
+      T.ok(worst <= 1e-12 * size, ("%s: line %d bends by %g of the size"):format(what, i, worst / size))
+    elseif p.kind == "arc" then
+      local best, tr = math.huge, nil
+      for _, q in ipairs(o.prims) do
+        if q.kind == "arc" and dist(q.c, p.centre) < best then best, tr = dist(q.c, p.centre), q end
+      end
+      T.ok(tr and math.abs(p.radius - tr.r) <= 1e-9 * tr.r and best <= 1e-9 * size,
+           ("%s: arc %d radius %g centre off by %g"):format(what, i, p.radius, best))
+      local worst = 0
+      for k = 0, 16 do
+        local x = { C:eval(r0 + (r1 - r0) * k / 16) }
+        worst = math.max(worst, math.abs(dist(x, p.centre) - p.radius))
+      end
+      T.ok(worst <= 1e-9 * size, ("%s: arc %d off its circle by %g"):format(what, i, worst))
+    end
+  end
+end
+
+T.test("clean sections of lines and arcs: corners exact, curve within 1e-9 of the size everywhere, lines straight to 1e-12, radii to 1e-9", function()
   for _, c in ipairs(clean_cases()) do
     local o = ALL[c.name]
     local size = shapes.size(o)
@@ -57,42 +86,7 @@ T.test("clean sections of lines and arcs: corners exact, curve within 1e-9 of th
       T.ok(best <= 1e-9 * size, ("%s: corner (%g, %g) missed by %g"):format(what, v[1], v[2], best))
     end
     T.eq(#rep.corners, #o.corners, what .. ": rep.corners")
-  end
-end)
-
-T.test("clean sections: lines straight to 1e-12, arc radii and centres to 1e-9", function()
-  for _, c in ipairs(clean_cases()) do
-    local o = ALL[c.name]
-    local size = shapes.size(o)
-    local P = bs.points.new(shapes.sample(o, c.per, { uneven = c.uneven, seed = c.seed }))
-    local C, rep = auto.run(P)
-    local what = ("%s %d per side%s"):format(c.name, c.per, c.uneven and " uneven" or "")
-    local a, b = C:domain()
-    for i, p in ipairs(rep.pieces or {}) do
-      local r0, r1 = a + (b - a) * p.range[1], a + (b - a) * p.range[2]
-      if p.kind == "line" then
-        local worst = 0
-        for k = 0, 16 do
-          local x = { C:eval(r0 + (r1 - r0) * k / 16) }
-          worst = math.max(worst, line_dist(x, p.start, p["end"]))
-        end
-        T.ok(worst <= 1e-12 * size, ("%s: line %d bends by %g of the size"):format(what, i, worst / size))
-      elseif p.kind == "arc" then
-        -- the true arc it follows: the nearest true centre
-        local best, tr = math.huge, nil
-        for _, q in ipairs(o.prims) do
-          if q.kind == "arc" and dist(q.c, p.centre) < best then best, tr = dist(q.c, p.centre), q end
-        end
-        T.ok(tr and math.abs(p.radius - tr.r) <= 1e-9 * tr.r and best <= 1e-9 * size,
-             ("%s: arc %d radius %g centre off by %g"):format(what, i, p.radius, best))
-        local worst = 0
-        for k = 0, 16 do
-          local x = { C:eval(r0 + (r1 - r0) * k / 16) }
-          worst = math.max(worst, math.abs(dist(x, p.centre) - p.radius))
-        end
-        T.ok(worst <= 1e-9 * size, ("%s: arc %d off its circle by %g"):format(what, i, worst))
-      end
-    end
+    check_pieces(C, rep, o, size, what)
   end
 end)
 
