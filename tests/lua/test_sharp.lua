@@ -103,6 +103,19 @@ T.test("the one curve: NURBS only with arcs, polynomial otherwise; closed and pe
   local worst = 0
   for i = 1, #S1 do worst = math.max(worst, dist({ S1:get(i) }, { S2:get(i) })) end
   T.ok(worst <= 1e-12 * shapes.size(ALL.keyhole), "JSON round trip " .. worst)
+  -- IGES: one entity 126 (its directory entry takes two lines with 'D' in column 73)
+  local path = os.tmpname()
+  assert(C:write(path .. ".iges"))
+  local f = assert(io.open(path .. ".iges"))
+  local entities, rational = 0, nil
+  for line in f:lines() do
+    if line:sub(73, 73) == "D" and line:sub(1, 8):match("^%s*126$") then entities = entities + 1 end
+    if line:sub(73, 73) == "P" and line:match("^126,") then rational = line end
+  end
+  f:close()
+  os.remove(path .. ".iges"); os.remove(path)
+  T.eq(entities, 2, "one entity 126: two directory lines")
+  T.ok(rational ~= nil, "its parameter data")
 end)
 
 T.test("bs.geom.segment: pieces, ranges and report fields", function()
