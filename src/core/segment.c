@@ -330,8 +330,8 @@ static int in_gap(const section *s, const bsfit_piece *A, const model *ma, const
                   const model *mb, const double *x, double slack) {
   const double *qa = sample(s, A->first + A->count - 1), *qb = sample(s, B->first);
   double ta[2], tb[2], f[2], chord = hypot(qb[0] - qa[0], qb[1] - qa[1]);
-  double reach_a = 1.5 * max_spacing(s, A) + chord + s->tol;
-  double reach_b = 1.5 * max_spacing(s, B) + chord + s->tol;
+  double reach_a = 1.5 * max_spacing(s, A) + 1.5 * chord + s->tol;
+  double reach_b = 1.5 * max_spacing(s, B) + 1.5 * chord + s->tol;
   foot(ma, qa, f, ta);
   foot(mb, qb, f, tb);
   if (hypot(x[0] - qa[0], x[1] - qa[1]) > reach_a || hypot(x[0] - qb[0], x[1] - qb[1]) > reach_b)

@@ -26,6 +26,9 @@ local function clean_cases()
       for seed = 1, 2 do cases[#cases + 1] = { name = name, per = per, uneven = true, seed = seed + per } end
     end
   end
+  -- a D whose arc samples all crowd near one end: its corner lies 89 degrees of arc away
+  -- from them (failed before the reach of a join grew with the gap's chord)
+  cases[#cases + 1] = { name = "D", per = 4, uneven = true, seed = 104 }
   return cases
 end
 
