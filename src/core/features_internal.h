@@ -53,4 +53,10 @@ int bsfit__meet_circles(const bsfit__circle *A, const bsfit__circle *B, double x
 /* Meeting point of two lines; 0 when parallel. */
 int bsfit__meet_lines(const bsfit__line *A, const bsfit__line *B, double x[2]);
 
+/* segment.c: the bounding-box diagonal of m 2D points, and the argument checks of
+** bsfit_segment (shared with segment_sigma.c) */
+double bsfit__segment_size(const double *pts, size_t m);
+bsfit_err bsfit__segment_check(const double *pts, size_t m, int dim, const bsfit_segment_opts *o,
+                               bsfit_status *st);
+
 #endif
