@@ -90,7 +90,7 @@ BSFIT_API bsfit_err bsfit_segment(const double *pts, size_t m, int dim,
 ** Segmented at a level below its noise, a section's runs stop short, and the pooled
 ** residual of its lines and arcs (sum of squares over degrees of freedom) exceeds the
 ** level; at the noise the models are right and the two match. The levels tried rise by
-** 10^(1/4) from a sixteenth of a first guess (how far samples lie off their neighbours'
+** 10^(1/2) from a sixteenth of a first guess (how far samples lie off their neighbours'
 ** chord: the lower quartile, over its value for pure noise, 0.3186 sigma); the first
 ** whose pooled residual is at most 1.2 times the level gives the estimate. Sparse
 ** samples of a contour that bends between them make window-based estimates

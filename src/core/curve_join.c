@@ -86,11 +86,13 @@ static bsfit_err join_part(const bsfit_curve *part, size_t i, int dim, bsfit_cur
   if (part->periodic || part->dim != dim)
     return bsfit__fail(st, part->periodic ? BSFIT_EINVAL : BSFIT_EDIM,
                        "join: part %zu is periodic or of another dimension", i + 1);
-  if (p < 1 || p > 3) return bsfit__fail(st, BSFIT_EDEGREE, "join: part %zu has degree %d (1..3)", i + 1, p);
+  if (p < 1 || p > 3)
+    return bsfit__fail(st, BSFIT_EDEGREE, "join: part %zu has degree %d (1..3)", i + 1, p);
   for (k = 1; k <= p; k++)
     if (part->knots[k] != part->knots[0] || part->knots[n + k - 1] != part->knots[n])
       return bsfit__fail(st, BSFIT_EINVAL, "join: part %zu is not clamped", i + 1);
-  if (part->weights && (fabs(part->weights[0] - 1) > 1e-12 || fabs(part->weights[n - 1] - 1) > 1e-12))
+  if (part->weights &&
+      (fabs(part->weights[0] - 1) > 1e-12 || fabs(part->weights[n - 1] - 1) > 1e-12))
     return bsfit__fail(st, BSFIT_EINVAL, "join: part %zu has end weights other than 1", i + 1);
   *use = part;
   if (p == 3) return BSFIT_OK;
@@ -138,7 +140,8 @@ static void join_fill(const bsfit_curve *const *u, size_t n, const double *s, bs
       for (d = 0; d < dim; d++) out->ctrl[j * (size_t)dim + d] = c->ctrl[k * (size_t)dim + d];
       if (out->weights) out->weights[j] = c->weights ? c->weights[k] : 1.0;
     }
-    for (k = 4; k < c->n; k++) out->knots[kn++] = s[i] + (s[i + 1] - s[i]) * (c->knots[k] - a) / (b - a);
+    for (k = 4; k < c->n; k++)
+      out->knots[kn++] = s[i] + (s[i + 1] - s[i]) * (c->knots[k] - a) / (b - a);
     for (k = 0; k < (i + 1 < n ? 3u : 4u); k++) out->knots[kn++] = i + 1 < n ? s[i + 1] : 1.0;
   }
 }
@@ -157,12 +160,16 @@ bsfit_err bsfit_curve_join(const bsfit_curve *const *parts, size_t n, const doub
   tmp = bsfit__alloc(al, bsfit__mulsize(n, sizeof *tmp));
   use = bsfit__alloc(al, bsfit__mulsize(n, sizeof *use));
   s = bsfit__alloc(al, bsfit__mulsize(n + 1, sizeof *s));
-  if (!tmp || !use || !s) { e = bsfit__fail(st, BSFIT_ENOMEM, "join: out of memory"); goto done; }
+  if (!tmp || !use || !s) {
+    e = bsfit__fail(st, BSFIT_ENOMEM, "join: out of memory");
+    goto done;
+  }
   for (i = 0; i < n; i++) bsfit_curve_init(&tmp[i]);
   for (i = 0; i < n && e == BSFIT_OK; i++) {
     if (parts[i] == NULL || !(lengths[i] > 0) || !isfinite(lengths[i]))
       e = bsfit__fail(st, BSFIT_EINVAL, "join: part %zu missing or its length not > 0", i + 1);
-    else e = join_part(parts[i], i, dim, &tmp[i], &use[i], st);
+    else
+      e = join_part(parts[i], i, dim, &tmp[i], &use[i], st);
     if (e == BSFIT_OK) {
       total += lengths[i];
       N += use[i]->n - (i > 0);

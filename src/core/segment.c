@@ -20,11 +20,11 @@ typedef struct section {
   const double *pts;
   size_t m;
   int closed;
-  double tol;      /* a sample fits a model within tol */
-  double unit;     /* sigma: tol / tol_sigma (evidence is counted in unit^2) */
+  double tol;  /* a sample fits a model within tol */
+  double unit; /* sigma: tol / tol_sigma (evidence is counted in unit^2) */
   size_t min_len[2];
-  size_t *gaps;    /* gaps[i]: how many of the steps j -> j+1, j < i (unwrapped, i <= 2m),
-                      are longer than tol: a model needs that many distinct samples */
+  size_t *gaps; /* gaps[i]: how many of the steps j -> j+1, j < i (unwrapped, i <= 2m),
+                   are longer than tol: a model needs that many distinct samples */
   const bsfit_allocator *a;
 } section;
 
@@ -54,8 +54,8 @@ static bsfit__run run_of(const section *s, size_t first, size_t n) {
 
 /* fits a model of `kind` to n samples from `first`; its largest distance (HUGE_VAL
 ** when it cannot be fitted) */
-static double fit_model_from(const section *s, int kind, size_t first, size_t n,
-                             const model *warm, model *md, double *rms) {
+static double fit_model_from(const section *s, int kind, size_t first, size_t n, const model *warm,
+                             model *md, double *rms) {
   bsfit__run r = run_of(s, first, n);
   double turn = 0;
   size_t k;
@@ -134,8 +134,15 @@ static bsfit_err maximal_runs(const section *s, int kind, size_t *len) {
     size_t n = prev > minl ? prev - 1 : minl, good, fitted;
     if ((i & 255) == 0 && bsfit__interrupted(s->a)) return BSFIT_EINTR;
     len[i] = 0;
-    if (n > limit || minl > limit) { prev = 0; continue; }
-    if (n == minl && seed_misses(s, kind, i, n)) { prev = 0; have_last = 0; continue; }
+    if (n > limit || minl > limit) {
+      prev = 0;
+      continue;
+    }
+    if (n == minl && seed_misses(s, kind, i, n)) {
+      prev = 0;
+      have_last = 0;
+      continue;
+    }
     if (fit_model_from(s, kind, i, n, have_last ? &last : NULL, &md, NULL) > s->tol) {
       n = minl;
       if (seed_misses(s, kind, i, n) || fit_model(s, kind, i, n, &md, NULL) > s->tol) {
@@ -146,7 +153,10 @@ static bsfit_err maximal_runs(const section *s, int kind, size_t *len) {
     good = fitted = n;
     while (n < limit) {
       model next;
-      if (model_dist(&md, sample(s, i + n)) <= s->tol) { n++; continue; }
+      if (model_dist(&md, sample(s, i + n)) <= s->tol) {
+        n++;
+        continue;
+      }
       if (8 * (n + 1 - fitted) < n + 1) break;
       if (fit_model_from(s, kind, i, n + 1, &md, &next, NULL) > s->tol) break;
       md = next;
@@ -174,7 +184,7 @@ static bsfit_err maximal_runs(const section *s, int kind, size_t *len) {
 /* DP state: the cheapest cover of offsets [0, j] whose last piece ends at j */
 typedef struct cell {
   double cost;
-  size_t start;  /* offset of the last piece's first sample */
+  size_t start; /* offset of the last piece's first sample */
   int kind;
   int shared;    /* the piece before ends at `start` too (a sampled corner) */
   int prev_free; /* the piece before is free */
@@ -199,7 +209,8 @@ static void best_primitive(const section *s, size_t origin, size_t j, size_t *co
       size_t a = j + 1 - n;
       double before = 0;
       int shared = 0, pf = 0;
-      if (len[kind][(origin + a) % s->m] < n || distinct(s, (origin + a) % s->m, n) < minl) continue;
+      if (len[kind][(origin + a) % s->m] < n || distinct(s, (origin + a) % s->m, n) < minl)
+        continue;
       if (a > 0) {
         before = prim[a - 1].cost;
         if (fr[a - 1].cost < before) before = fr[a - 1].cost, pf = 1;
@@ -228,8 +239,10 @@ static size_t cheapest_cover(const section *s, size_t origin, size_t *const len[
     best_primitive(s, origin, j, len, rmax, prim, fr, &prim[j]);
     fr[j].kind = FREE;
     fr[j].shared = 0;
-    if (a <= b) fr[j].cost = a, fr[j].start = fr[j - 1].start, fr[j].prev_free = fr[j - 1].prev_free;
-    else fr[j].cost = b, fr[j].start = j, fr[j].prev_free = 0;
+    if (a <= b)
+      fr[j].cost = a, fr[j].start = fr[j - 1].start, fr[j].prev_free = fr[j - 1].prev_free;
+    else
+      fr[j].cost = b, fr[j].start = j, fr[j].prev_free = 0;
   }
   /* trace back from the end */
   j = M - 1;
@@ -242,8 +255,10 @@ static size_t cheapest_cover(const section *s, size_t origin, size_t *const len[
     p->first = (origin + c->start) % s->m;
     p->count = j - c->start + 1;
     if (c->start == 0) break;
-    if (c->shared) j = c->start;
-    else j = c->start - 1;
+    if (c->shared)
+      j = c->start;
+    else
+      j = c->start - 1;
     in_free = c->prev_free;
   }
   return np;
@@ -314,9 +329,12 @@ static int touching(const section *s, const model *ma, const model *mb, double *
     const bsfit__circle *A = &ma->circle, *B = &mb->circle;
     double d = hypot(B->c[0] - A->c[0], B->c[1] - A->c[1]), u;
     if (d <= s->tol) return 0;
-    if (fabs(d - (A->r + B->r)) <= 2 * s->tol) u = A->r / d; /* outside each other */
-    else if (fabs(d - fabs(A->r - B->r)) <= 2 * s->tol) u = A->r > B->r ? A->r / d : -A->r / d;
-    else return 0;
+    if (fabs(d - (A->r + B->r)) <= 2 * s->tol)
+      u = A->r / d; /* outside each other */
+    else if (fabs(d - fabs(A->r - B->r)) <= 2 * s->tol)
+      u = A->r > B->r ? A->r / d : -A->r / d;
+    else
+      return 0;
     x[0] = A->c[0] + u * (B->c[0] - A->c[0]);
     x[1] = A->c[1] + u * (B->c[1] - A->c[1]);
     return 1;
@@ -354,15 +372,21 @@ static int meet(const section *s, const bsfit_piece *A, const model *ma, const b
     ** of the touching point: a sample that far past it fits either piece */
     double r = ma->kind == ARC ? ma->circle.r : mb->circle.r;
     if (ma->kind == ARC && mb->kind == ARC && mb->circle.r < r) r = mb->circle.r;
-    return in_gap(s, A, ma, B, mb, x, fmax(2 * s->tol, sqrt(2 * r * s->tol))) ? BSFIT_JOIN_TANGENT : 0;
+    return in_gap(s, A, ma, B, mb, x, fmax(2 * s->tol, sqrt(2 * r * s->tol))) ? BSFIT_JOIN_TANGENT
+                                                                              : 0;
   }
-  if (ma->kind == LINE && mb->kind == LINE) nc = bsfit__meet_lines(&ma->line, &mb->line, cand[0]);
-  else if (ma->kind == LINE) nc = bsfit__meet_line_circle(&ma->line, &mb->circle, cand);
-  else if (mb->kind == LINE) nc = bsfit__meet_line_circle(&mb->line, &ma->circle, cand);
-  else nc = bsfit__meet_circles(&ma->circle, &mb->circle, cand);
+  if (ma->kind == LINE && mb->kind == LINE)
+    nc = bsfit__meet_lines(&ma->line, &mb->line, cand[0]);
+  else if (ma->kind == LINE)
+    nc = bsfit__meet_line_circle(&ma->line, &mb->circle, cand);
+  else if (mb->kind == LINE)
+    nc = bsfit__meet_line_circle(&mb->line, &ma->circle, cand);
+  else
+    nc = bsfit__meet_circles(&ma->circle, &mb->circle, cand);
   for (k = 0; k < nc; k++) {
     double *c = cand[k], d = hypot(c[0] - qa[0], c[1] - qa[1]) + hypot(c[0] - qb[0], c[1] - qb[1]);
-    if (in_gap(s, A, ma, B, mb, c, 2 * s->tol) && d < best) best = d, x[0] = c[0], x[1] = c[1], found = 1;
+    if (in_gap(s, A, ma, B, mb, c, 2 * s->tol) && d < best)
+      best = d, x[0] = c[0], x[1] = c[1], found = 1;
   }
   if (!found) return 0;
   foot(ma, x, f, ta);
@@ -382,7 +406,8 @@ static int meet(const section *s, const bsfit_piece *A, const model *ma, const b
 ** along it, scaled to [-1, 1]); HUGE_VAL when it cannot be fitted */
 static double cubic_rss(const section *s, size_t first, size_t n) {
   const double *a = sample(s, first), *b = sample(s, first + n - 1);
-  double ux = b[0] - a[0], uy = b[1] - a[1], len = hypot(ux, uy), A[BSFIT__SMALL][BSFIT__SMALL] = {{0}};
+  double ux = b[0] - a[0], uy = b[1] - a[1], len = hypot(ux, uy),
+         A[BSFIT__SMALL][BSFIT__SMALL] = {{0}};
   double g[4] = {0, 0, 0, 0}, rss = 0;
   size_t k;
   int i, j;
@@ -424,8 +449,9 @@ static double join_evidence(const section *s, const bsfit_piece *A, const model 
   first = A->first + A->count - na;
   for (k = 0; k < na; k++) two += pow(model_dist(ma, sample(s, first + k)), 2);
   for (k = 0; k < nb; k++) two += pow(model_dist(mb, sample(s, B->first + k)), 2);
-  if (shared) two -= 0.5 * (pow(model_dist(ma, sample(s, B->first)), 2) +
-                            pow(model_dist(mb, sample(s, B->first)), 2));
+  if (shared)
+    two -= 0.5 * (pow(model_dist(ma, sample(s, B->first)), 2) +
+                  pow(model_dist(mb, sample(s, B->first)), 2));
   n = na + nb - (size_t)shared;
   if (n > s->m) n = s->m;
   one = cubic_rss(s, first, n);
@@ -451,8 +477,11 @@ static void set_arc_sweep(bsfit_piece *p, const model *md, int whole) {
   double a1 = atan2(p->end[1] - md->circle.c[1], p->end[0] - md->circle.c[0]);
   double sw = a1 - a0;
   if (whole) sw = 0;
-  if (md->orient > 0) { while (sw <= 0) sw += 2 * PI; }
-  else { while (sw >= 0) sw -= 2 * PI; }
+  if (md->orient > 0) {
+    while (sw <= 0) sw += 2 * PI;
+  } else {
+    while (sw >= 0) sw -= 2 * PI;
+  }
   p->sweep = sw;
 }
 
@@ -473,8 +502,10 @@ static int join_pieces(const section *s, bsfit_piece *A, const model *ma, bsfit_
     return 1;
   }
   /* a free run meets a primitive at the primitive's extreme sample, tangentially */
-  if (A->kind != FREE) foot(ma, sample(s, A->first + A->count - 1), f, t);
-  else foot(mb, sample(s, B->first), f, t);
+  if (A->kind != FREE)
+    foot(ma, sample(s, A->first + A->count - 1), f, t);
+  else
+    foot(mb, sample(s, B->first), f, t);
   memcpy(A->end, f, sizeof f);
   memcpy(B->start, f, sizeof f);
   memcpy(A->t_end, t, sizeof t);
@@ -537,10 +568,14 @@ static void open_ends(const section *s, bsfit_piece *p, const model *md, size_t 
   double t[2];
   bsfit_piece *z = &p[n - 1];
   p[0].join = BSFIT_JOIN_END;
-  if (p[0].kind == FREE) memcpy(p[0].start, sample(s, 0), sizeof p[0].start);
-  else foot(&md[0], sample(s, 0), p[0].start, p[0].t_start);
-  if (z->kind == FREE) memcpy(z->end, sample(s, s->m - 1), sizeof z->end);
-  else foot(&md[n - 1], sample(s, s->m - 1), z->end, t), memcpy(z->t_end, t, sizeof t);
+  if (p[0].kind == FREE)
+    memcpy(p[0].start, sample(s, 0), sizeof p[0].start);
+  else
+    foot(&md[0], sample(s, 0), p[0].start, p[0].t_start);
+  if (z->kind == FREE)
+    memcpy(z->end, sample(s, s->m - 1), sizeof z->end);
+  else
+    foot(&md[n - 1], sample(s, s->m - 1), z->end, t), memcpy(z->t_end, t, sizeof t);
 }
 
 /* }==================================================================== */
@@ -559,17 +594,20 @@ double bsfit__segment_size(const double *pts, size_t m) {
 }
 
 bsfit_err bsfit__segment_check(const double *pts, size_t m, int dim, const bsfit_segment_opts *o,
-                              bsfit_status *st) {
+                               bsfit_status *st) {
   if (dim != 2) return bsfit__fail(st, BSFIT_EDIM, "segmentation needs 2D points, got dim %d", dim);
   if (pts == NULL || m < 3)
     return bsfit__fail(st, BSFIT_ETOOFEW, "segmentation needs at least 3 points, got %zu", m);
-  if (!bsfit__all_finite(pts, 2 * m)) return bsfit__fail(st, BSFIT_ENONFINITE, "points contain NaN or Inf");
+  if (!bsfit__all_finite(pts, 2 * m))
+    return bsfit__fail(st, BSFIT_ENONFINITE, "points contain NaN or Inf");
   if (!(o->sigma >= 0) || !isfinite(o->sigma) || !(o->tol_sigma >= 0) || !isfinite(o->tol_sigma) ||
       !(o->exact >= 0) || !(o->exact < 1) || o->min_line == 1 || o->min_arc == 1 || o->min_arc == 2)
-    return bsfit__fail(st, BSFIT_EINVAL, "segmentation options out of range (sigma %g, tol_sigma %g, "
-                       "exact %g, min_line %zu, min_arc %zu)", o->sigma, o->tol_sigma, o->exact,
-                       o->min_line, o->min_arc);
-  if (!(bsfit__segment_size(pts, m) > 0)) return bsfit__fail(st, BSFIT_EDEGENERATE, "all %zu points coincide", m);
+    return bsfit__fail(st, BSFIT_EINVAL,
+                       "segmentation options out of range (sigma %g, tol_sigma %g, "
+                       "exact %g, min_line %zu, min_arc %zu)",
+                       o->sigma, o->tol_sigma, o->exact, o->min_line, o->min_arc);
+  if (!(bsfit__segment_size(pts, m) > 0))
+    return bsfit__fail(st, BSFIT_EDEGENERATE, "all %zu points coincide", m);
   return BSFIT_OK;
 }
 
@@ -708,8 +746,10 @@ static int goes_round(const section *s, const bsfit_piece *p, const model *md) {
     double bx = b[0] - md->circle.c[0], by = b[1] - md->circle.c[1];
     double t = md->orient * atan2(ax * by - ay * bx, ax * bx + ay * by);
     if (t < 0) t += 2 * PI;
-    if (k + 1 == p->count) closing = t;
-    else if (t > longest) longest = t;
+    if (k + 1 == p->count)
+      closing = t;
+    else if (t > longest)
+      longest = t;
   }
   return closing <= 1.5 * longest;
 }
@@ -722,7 +762,8 @@ static size_t finish_pieces(const section *s, bsfit_piece *p, model *md, size_t 
   }
   short_runs(s, p, md, np);
   rebalance(s, p, md, np);
-  if (np == 1 && s->closed && p[0].kind == ARC && goes_round(s, &p[0], &md[0])) { /* a whole circle */
+  if (np == 1 && s->closed && p[0].kind == ARC &&
+      goes_round(s, &p[0], &md[0])) { /* a whole circle */
     foot(&md[0], sample(s, p[0].first), p[0].start, p[0].t_start);
     memcpy(p[0].end, p[0].start, sizeof p[0].end);
     memcpy(p[0].t_end, p[0].t_start, sizeof p[0].t_end);
@@ -785,7 +826,8 @@ bsfit_err bsfit_segment(const double *pts, size_t m, int dim, const bsfit_segmen
   s.a = a;
   s.min_len[LINE] = o.min_line ? o.min_line : 3;
   s.min_len[ARC] = o.min_arc ? o.min_arc : 4;
-  s.tol = fmax((o.tol_sigma > 0 ? o.tol_sigma : 4.0) * o.sigma, (o.exact > 0 ? o.exact : 1e-10) * bsfit__segment_size(pts, m));
+  s.tol = fmax((o.tol_sigma > 0 ? o.tol_sigma : 4.0) * o.sigma,
+               (o.exact > 0 ? o.exact : 1e-10) * bsfit__segment_size(pts, m));
   s.unit = s.tol / (o.tol_sigma > 0 ? o.tol_sigma : 4.0);
   s.gaps = bsfit__alloc(a, bsfit__mulsize(2 * m + 1, sizeof(size_t)));
   len[0] = bsfit__alloc(a, bsfit__mulsize(m, sizeof(size_t)));
@@ -799,7 +841,8 @@ bsfit_err bsfit_segment(const double *pts, size_t m, int dim, const bsfit_segmen
     goto done;
   }
   count_gaps(&s);
-  if ((e = maximal_runs(&s, LINE, len[0])) != BSFIT_OK || (e = maximal_runs(&s, ARC, len[1])) != BSFIT_OK) {
+  if ((e = maximal_runs(&s, LINE, len[0])) != BSFIT_OK ||
+      (e = maximal_runs(&s, ARC, len[1])) != BSFIT_OK) {
     e = bsfit__fail(st, e, "segmentation interrupted");
     goto done;
   }
@@ -809,9 +852,9 @@ bsfit_err bsfit_segment(const double *pts, size_t m, int dim, const bsfit_segmen
   *count = np;
   e = bsfit__ok(st);
 done:
-  bsfit__free(a, s.gaps, s.gaps ? (2 * m + 1) * sizeof(size_t) : 0);
-  bsfit__free(a, len[0], len[0] ? m * sizeof(size_t) : 0);
-  bsfit__free(a, len[1], len[1] ? m * sizeof(size_t) : 0);
+  bsfit__free(a, s.gaps, s.gaps ? (2 * m + 1) * sizeof(size_t): 0);
+  bsfit__free(a, len[0], len[0] ? m * sizeof(size_t): 0);
+  bsfit__free(a, len[1], len[1] ? m * sizeof(size_t): 0);
   bsfit__free(a, prim, prim ? m * sizeof(cell) : 0);
   bsfit__free(a, fr, fr ? m * sizeof(cell) : 0);
   bsfit__free(a, buf, buf ? (2 * m + 2) * sizeof(bsfit_piece) : 0);

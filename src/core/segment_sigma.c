@@ -20,7 +20,8 @@ static double chord_sigma(const double *pts, size_t m, int closed, double *d) {
     double dx = b[0] - a[0], dy = b[1] - a[1], l2 = dx * dx + dy * dy, t;
     if (!(l2 > 0)) continue;
     t = ((q[0] - a[0]) * dx + (q[1] - a[1]) * dy) / l2;
-    d[n++] = fabs((q[0] - a[0]) * dy - (q[1] - a[1]) * dx) / sqrt(l2) / sqrt(1 + t * t + (1 - t) * (1 - t));
+    d[n++] = fabs((q[0] - a[0]) * dy - (q[1] - a[1]) * dx) / sqrt(l2) /
+             sqrt(1 + t * t + (1 - t) * (1 - t));
   }
   return n ? bsfit__select(d, n, n / 4) / 0.3186 : 0.0;
 }
@@ -60,12 +61,13 @@ bsfit_err bsfit_segment_sigma(const double *pts, size_t m, int dim, int closed, 
   }
   /* Below the noise, the runs stop short and their pooled residual exceeds the level
   ** they were cut at; at the noise, the models are right and it matches: the first level,
-  ** rising by 10^(1/4) from well below the first guess, whose pooled residual is at most
+  ** rising by 10^(1/2) from well below the first guess, whose pooled residual is at most
   ** 1.2 times the level is the estimate. */
   size = bsfit__segment_size(pts, m);
   s0 = fmax(chord_sigma(pts, m, closed, d) / 16.0, 1e-9 * size);
   if (!(max_sigma > 0)) max_sigma = 0.05 * size;
-  for (round = 0; round < 48 && s0 < 0.05 * size && s0 <= max_sigma; round++, s0 *= 1.7782794100389228) {
+  for (round = 0; round < 48 && s0 < 0.05 * size && s0 <= max_sigma;
+       round++, s0 *= 3.1622776601683795) {
     double s1;
     o.sigma = s0;
     if ((round & 7) == 7 && bsfit__interrupted(a)) {

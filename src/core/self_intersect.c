@@ -41,7 +41,10 @@ static size_t sweep(const double *S, edge *E, size_t ne, int closed, size_t *fir
   size_t a, b, found = 0;
   qsort(E, ne, sizeof *E, by_left);
   for (a = 0; a < ne && found < 1000; a++) {
-    if ((a & 4095) == 0 && bsfit__interrupted(al)) { *stop = 1; return found; }
+    if ((a & 4095) == 0 && bsfit__interrupted(al)) {
+      *stop = 1;
+      return found;
+    }
     for (b = a + 1; b < ne && E[b].x0 <= E[a].x1; b++) {
       size_t i = E[a].i, j = E[b].i;
       if (adjacent(i, j, ne, closed)) continue;
@@ -62,14 +65,20 @@ bsfit_err bsfit_curve_self_intersections(const bsfit_curve *c, size_t k, size_t 
   int closed, stop = 0;
   bsfit_err e;
   if (crossings) *crossings = 0;
-  if (c == NULL || crossings == NULL) return bsfit__fail(st, BSFIT_EINVAL, "self-intersection: no curve");
-  if (c->dim != 2) return bsfit__fail(st, BSFIT_EDIM, "self-intersection needs a 2D curve, got dim %d", c->dim);
-  if (k < 3) return bsfit__fail(st, BSFIT_EINVAL, "self-intersection needs at least 3 samples, got %zu", k);
+  if (c == NULL || crossings == NULL)
+    return bsfit__fail(st, BSFIT_EINVAL, "self-intersection: no curve");
+  if (c->dim != 2)
+    return bsfit__fail(st, BSFIT_EDIM, "self-intersection needs a 2D curve, got dim %d", c->dim);
+  if (k < 3)
+    return bsfit__fail(st, BSFIT_EINVAL, "self-intersection needs at least 3 samples, got %zu", k);
   bs = bsfit__mulsize(k + 1, 2 * sizeof(double));
   S = bsfit__alloc(al, bs);
   es = bsfit__mulsize(k, sizeof *E);
   E = bsfit__alloc(al, es);
-  if (!S || !E) { e = bsfit__fail(st, BSFIT_ENOMEM, "self-intersection: out of memory"); goto done; }
+  if (!S || !E) {
+    e = bsfit__fail(st, BSFIT_ENOMEM, "self-intersection: out of memory");
+    goto done;
+  }
   e = bsfit_curve_sample(c, k, S, st);
   if (e != BSFIT_OK) goto done;
   /* a closed curve (periodic, or whose ends meet) is a closed polyline */
@@ -83,7 +92,10 @@ bsfit_err bsfit_curve_self_intersections(const bsfit_curve *c, size_t k, size_t 
     E[i].i = i;
   }
   *crossings = sweep(S, E, ne, closed, &first, al, &stop);
-  if (stop) { e = bsfit__fail(st, BSFIT_EINTR, "self-intersection: interrupted"); goto done; }
+  if (stop) {
+    e = bsfit__fail(st, BSFIT_EINTR, "self-intersection: interrupted");
+    goto done;
+  }
   if (where && *crossings > 0) {
     bsfit_curve_domain(c, &a, &b);
     u0 = a + (b - a) * (double)first / (double)(c->periodic ? k : k - 1);

@@ -120,8 +120,10 @@ int bsfit__fit_circle(const bsfit__run *r, const bsfit__circle *init, bsfit__cir
   double c[2], rad, step;
   int it;
   if (r->n < 3) return 0;
-  if (init != NULL && r->n > 3) *C = *init;
-  else if (!circle3(o, bsfit__run_at(r, r->n / 2), bsfit__run_at(r, r->n - 1), C)) return 0;
+  if (init != NULL && r->n > 3)
+    *C = *init;
+  else if (!circle3(o, bsfit__run_at(r, r->n / 2), bsfit__run_at(r, r->n - 1), C))
+    return 0;
   if (r->n == 3) return 1;
   c[0] = C->c[0] - o[0];
   c[1] = C->c[1] - o[1];

@@ -67,8 +67,8 @@ static void push_piece(lua_State *L, const bsfit_piece *p, size_t m) {
 
 /* bs.geom.segment(P [, opts]) */
 static int features_segment(lua_State *L) {
-  static const char *const names[] = {"closed", "sigma", "tol_sigma", "exact", "min_line",
-                                      "min_arc", NULL};
+  static const char *const names[] = {"closed",   "sigma",   "tol_sigma", "exact",
+                                      "min_line", "min_arc", NULL};
   bsfit_points_ud *P = bsfit__lua_topoints(L, 1);
   int t = bsfit__lua_opttable(L, 2, names);
   bsfit_segment_opts o;
@@ -142,8 +142,10 @@ static int features_self_intersections(lua_State *L) {
   e = bsfit_curve_self_intersections(c, (size_t)k, &count, &where, &a, &st);
   if (e != BSFIT_OK) return bsfit__lua_raise(L, e, &st, 0);
   lua_pushinteger(L, (lua_Integer)count);
-  if (count > 0) lua_pushnumber(L, where);
-  else lua_pushnil(L);
+  if (count > 0)
+    lua_pushnumber(L, where);
+  else
+    lua_pushnil(L);
   return 2;
 }
 
@@ -188,7 +190,8 @@ static int features_arc(lua_State *L) {
   bsfit_err e;
   luaL_checktype(L, 1, LUA_TTABLE);
   bsfit__lua_check_options(L, 1, names);
-  if (bsfit__lua_field(L, 1, "centre") == LUA_TNIL) return luaL_argerror(L, 1, "field 'centre' is required");
+  if (bsfit__lua_field(L, 1, "centre") == LUA_TNIL)
+    return luaL_argerror(L, 1, "field 'centre' is required");
   luaL_argcheck(L, read_point(L, lua_gettop(L), c) == 2, 1, "field 'centre' must be a 2D point");
   r = opt_number(L, 1, "radius", 0);
   a0 = opt_number(L, 1, "start", 0);

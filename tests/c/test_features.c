@@ -63,7 +63,8 @@ static void test_polygons_segment_into_lines_meeting_at_the_vertices(void **stat
       assert_int_equal(p[i].kind, BSFIT_PIECE_LINE);
       assert_int_equal(p[i].join, BSFIT_JOIN_CORNER);
       assert_int_equal((int)p[i].count, (int)k);
-      for (c = 0; c < nv; c++) best = fmin(best, hypot(p[i].start[0] - V[2 * c], p[i].start[1] - V[2 * c + 1]));
+      for (c = 0; c < nv; c++)
+        best = fmin(best, hypot(p[i].start[0] - V[2 * c], p[i].start[1] - V[2 * c + 1]));
       assert_true(best <= 1e-12 * 6);
       assert_true(p[i].max <= 1e-13 * 6);
     }
@@ -127,13 +128,15 @@ static size_t brute_crossings(const double *S, size_t k) {
   size_t i, j, n = 0;
   for (i = 0; i < k; i++)
     for (j = i + 2; j < k; j++) {
-      const double *a = S + 2 * i, *b = S + 2 * ((i + 1) % k), *c = S + 2 * j, *d = S + 2 * ((j + 1) % k);
+      const double *a = S + 2 * i, *b = S + 2 * ((i + 1) % k), *c = S + 2 * j,
+                   *d = S + 2 * ((j + 1) % k);
       double d1 = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
       double d2 = (b[0] - a[0]) * (d[1] - a[1]) - (b[1] - a[1]) * (d[0] - a[0]);
       double d3 = (d[0] - c[0]) * (a[1] - c[1]) - (d[1] - c[1]) * (a[0] - c[0]);
       double d4 = (d[0] - c[0]) * (b[1] - c[1]) - (d[1] - c[1]) * (b[0] - c[0]);
       if (i == 0 && j == k - 1) continue;
-      if (((d1 > 0 && d2 < 0) || (d1 < 0 && d2 > 0)) && ((d3 > 0 && d4 < 0) || (d3 < 0 && d4 > 0))) n++;
+      if (((d1 > 0 && d2 < 0) || (d1 < 0 && d2 > 0)) && ((d3 > 0 && d4 < 0) || (d3 < 0 && d4 > 0)))
+        n++;
     }
   return n;
 }
@@ -154,7 +157,8 @@ static void test_self_intersections_match_brute_force(void **state) {
       ctrl[2 * i] = rad * cos(a);
       ctrl[2 * i + 1] = rad * sin(a);
     }
-    assert_int_equal(bsfit_curve_new_periodic(&c, 3, 2, 12, NULL, ctrl, NULL, NULL, NULL), BSFIT_OK);
+    assert_int_equal(bsfit_curve_new_periodic(&c, 3, 2, 12, NULL, ctrl, NULL, NULL, NULL),
+                     BSFIT_OK);
     assert_int_equal(bsfit_curve_self_intersections(&c, 300, &n, &where, NULL, NULL), BSFIT_OK);
     assert_int_equal(bsfit_curve_sample(&c, 300, S, NULL), BSFIT_OK);
     assert_int_equal((int)n, (int)brute_crossings(S, 300));
@@ -233,14 +237,14 @@ static void test_segment_errors(void **state) {
   assert_true(strlen(st.msg) > 0);
 }
 
-int main(void) {
+int main(void){
   const struct CMUnitTest tests[] = {
-    cmocka_unit_test(test_polygons_segment_into_lines_meeting_at_the_vertices),
-    cmocka_unit_test(test_arc_is_the_circle),
-    cmocka_unit_test(test_join_keeps_each_part),
-    cmocka_unit_test(test_self_intersections_match_brute_force),
-    cmocka_unit_test(test_scratch_through_the_allocator_and_interrupts),
-    cmocka_unit_test(test_segment_errors),
+      cmocka_unit_test(test_polygons_segment_into_lines_meeting_at_the_vertices),
+      cmocka_unit_test(test_arc_is_the_circle),
+      cmocka_unit_test(test_join_keeps_each_part),
+      cmocka_unit_test(test_self_intersections_match_brute_force),
+      cmocka_unit_test(test_scratch_through_the_allocator_and_interrupts),
+      cmocka_unit_test(test_segment_errors),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -619,14 +619,14 @@ function steps.reweight(P, ctx)
   return C
 end
 
--- Never a loop: a closed 2D curve is checked for self-intersection (a sweep over 2000
+-- Never a loop: a closed 2D curve is checked for self-intersection (a sweep over max(500, 16 n)
 -- samples in C). A smooth fit that crosses itself is refitted with fewer control points
 -- (0.8 times, three times at most); a crossing that remains, or one of the pieces' curve,
 -- is reported in rep.warnings and rep.crossings. Returns the number of crossings.
 function steps.loops(P, ctx)
   local C = ctx.curve
   if not closed(ctx) or P:dim() ~= 2 then return 0 end
-  local k = math.max(2000, 8 * C:distinct())
+  local k = math.max(500, 16 * C:distinct())
   local n, where = bs.geom.self_intersections(C, k)
   local tries = 0
   while n > 0 and not sharp_path(ctx) and tries < 3 and ctx.opts.count == nil do
