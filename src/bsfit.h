@@ -320,6 +320,7 @@ BSFIT_API bsfit_err bsfit_curve_eval(const bsfit_curve *c, double u, double *out
 #include "bsfit_geom.h"
 #include "bsfit_analysis.h"
 #include "bsfit_scan.h"
+#include "bsfit_features.h"
 
 #ifdef __cplusplus
 }

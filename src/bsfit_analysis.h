@@ -116,10 +116,13 @@ typedef struct bsfit_corner {
 **                     `point`. Positions follow the order of the indices, so for closed
 **                     data the first may wrap to just below m.
 ** @param[out] count   the number of corners found (may exceed cap: then retry larger).
-** @return BSFIT_OK, or the errors of bsfit_noise_sigma. */
+** @param[in] a       scratch memory (O(m)) comes from it (NULL: realloc); its interrupt
+**                     flag stops the scans (BSFIT_EINTR).
+** @return BSFIT_OK, BSFIT_ENOMEM, BSFIT_EINTR, or the errors of bsfit_noise_sigma. */
 BSFIT_API bsfit_err bsfit_corners_detect(const double *pts, size_t m, int dim,
                                          const bsfit_corner_opts *opts, bsfit_corner *corners,
-                                         size_t cap, size_t *count, bsfit_status *st);
+                                         size_t cap, size_t *count, const bsfit_allocator *a,
+                                         bsfit_status *st);
 
 /** Parameters that down-weighted points cannot distort.
 **

@@ -1000,7 +1000,8 @@ static int turn_peak(const contour *c, const double *turn, size_t k, size_t r) {
 
 bsfit_err bsfit_corners_detect(const double *pts, size_t m, int dim,
                                const bsfit_corner_opts *opts, bsfit_corner *corners,
-                               size_t cap, size_t *count, bsfit_status *st) {
+                               size_t cap, size_t *count, const bsfit_allocator *al,
+                               bsfit_status *st) {
   contour c;
   candidate *cand;
   double sigma, scale, spacing, min_angle, reach_cap, *scratch;
@@ -1035,12 +1036,12 @@ bsfit_err bsfit_corners_detect(const double *pts, size_t m, int dim,
   memcpy(c.origin, pts, (size_t)dim * sizeof(double));
   bytes_prefix = (m + 1) * 10 * sizeof(double);
   bytes_cand = m * sizeof(candidate);
-  c.prefix = bsfit__alloc(NULL, bytes_prefix);
-  cand = bsfit__alloc(NULL, bytes_cand);
-  scratch = bsfit__alloc(NULL, m * sizeof(double));
-  span = bsfit__alloc(NULL, m * sizeof(size_t));
-  queue = bsfit__alloc(NULL, m * sizeof(size_t));
-  state = bsfit__alloc(NULL, m);
+  c.prefix = bsfit__alloc(al, bytes_prefix);
+  cand = bsfit__alloc(al, bytes_cand);
+  scratch = bsfit__alloc(al, m * sizeof(double));
+  span = bsfit__alloc(al, m * sizeof(size_t));
+  queue = bsfit__alloc(al, m * sizeof(size_t));
+  state = bsfit__alloc(al, m);
   if (c.prefix == NULL || cand == NULL || scratch == NULL || span == NULL || queue == NULL ||
       state == NULL) {
     e = bsfit__fail(st, BSFIT_ENOMEM, "out of memory for corner detection of %zu points", m);
@@ -1055,6 +1056,10 @@ bsfit_err bsfit_corners_detect(const double *pts, size_t m, int dim,
   /* the quick turn of every sample (scratch: -1 where it cannot be a corner), and how
   ** far a peak of it rules: a quarter of its shorter side */
   for (k = 0; k < m; k++) {
+    if ((k & 4095) == 4095 && bsfit__interrupted(al)) {
+      e = bsfit__fail(st, BSFIT_EINTR, "corner detection interrupted");
+      goto done;
+    }
     scratch[k] = quick_candidate(&c, k, scale, sigma, min_angle, &reach);
     span[k] = reach.back < reach.fwd ? reach.back : reach.fwd;
   }
@@ -1077,6 +1082,10 @@ bsfit_err bsfit_corners_detect(const double *pts, size_t m, int dim,
     size_t from, to, kk = queue[--nq];
     double gap = 0, pos = (double)kk, x[3] = {0, 0, 0}, a, moved;
     int second = state[kk] == 2; /* queued from another's finding: must find itself */
+    if ((nq & 255) == 0 && bsfit__interrupted(al)) {
+      e = bsfit__fail(st, BSFIT_EINTR, "corner detection interrupted");
+      goto done;
+    }
     a = corner_turn(&c, kk, scale, sigma, min_angle, reach_cap, &from, &to, &gap, &pos, x);
     moved = fabs(pos - (double)kk);
     if (c.closed) moved = fmin(moved, (double)m - moved);
@@ -1113,11 +1122,11 @@ bsfit_err bsfit_corners_detect(const double *pts, size_t m, int dim,
   *count = kept;
   e = bsfit__ok(st);
 done:
-  bsfit__free(NULL, c.prefix, bytes_prefix);
-  bsfit__free(NULL, cand, bytes_cand);
-  bsfit__free(NULL, scratch, m * sizeof(double));
-  bsfit__free(NULL, span, m * sizeof(size_t));
-  bsfit__free(NULL, queue, m * sizeof(size_t));
-  bsfit__free(NULL, state, m);
+  bsfit__free(al, c.prefix, bytes_prefix);
+  bsfit__free(al, cand, bytes_cand);
+  bsfit__free(al, scratch, m * sizeof(double));
+  bsfit__free(al, span, m * sizeof(size_t));
+  bsfit__free(al, queue, m * sizeof(size_t));
+  bsfit__free(al, state, m);
   return e;
 }

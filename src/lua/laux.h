@@ -223,6 +223,7 @@ void bsfit__lua_lib_auto(lua_State *L); /* lauto.c (automatic strategy): after k
 void bsfit__lua_lib_exchange(lua_State *L); /* lexchange.c: bs.io.write_step, write_dxf */
 void bsfit__lua_lib_skin(lua_State *L);     /* lskin.c: bs.surface.skin, after surface */
 void bsfit__lua_lib_scan(lua_State *L); /* lscan.c: bs.scan and its metatables */
+void bsfit__lua_lib_features(lua_State *L); /* lfeatures.c: after geom and curve */
 void bsfit_lua_open_fitter(lua_State *L);
 void bsfit_lua_open_surface(lua_State *L);
 void bsfit_lua_open_svg(lua_State *L);

@@ -132,6 +132,7 @@ static int geom_corners(lua_State *L) {
   size_t count = 0, k, d, cap = P->n > 0 ? P->n : 1;
   bsfit_vector_ud *turns, *where;
   bsfit_points_ud *at;
+  bsfit_allocator al = bsfit__lua_allocator(L); /* scratch counted by the engine's cap */
   bsfit_status st;
   bsfit_err e;
   memset(&o, 0, sizeof o);
@@ -140,7 +141,7 @@ static int geom_corners(lua_State *L) {
   o.min_angle_deg = opt_nonneg(L, t, "min_angle", 180.0);
   o.scale = opt_nonneg(L, t, "scale", 0.0);
   found = (bsfit_corner *)lua_newuserdatauv(L, cap * sizeof(bsfit_corner), 0);
-  e = bsfit_corners_detect(P->xy, P->n, (int)P->dim, &o, found, cap, &count, &st);
+  e = bsfit_corners_detect(P->xy, P->n, (int)P->dim, &o, found, cap, &count, &al, &st);
   if (e != BSFIT_OK) return bsfit__lua_result(L, e, &st, 0, 1);
   if (count > cap) count = cap; /* cannot happen: one corner per point at most */
   lua_createtable(L, (int)count, 0);

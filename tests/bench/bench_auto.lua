@@ -1,6 +1,8 @@
 -- bench_auto.lua: time of the automatic strategy on a 40-point section and on noisy
 -- sections of 10^3 .. 10^5 points (count search and parameter correction included),
--- with the time of each step.
+-- with the time of each step; then sections of lines and arcs (a T of 40 exact points,
+-- a D of 20, a rounded rectangle of 60 with noise 1e-4 of its size, 3000 exact points
+-- of a gear), which take the segmentation path.
 --   bsfit tests/bench/bench_auto.lua
 local bs = require "bsfit"
 local auto = require "bsfit.strategy.auto"
@@ -41,4 +43,70 @@ for _, m in ipairs { 40, 1000, 10000, 100000 } do
   end
   print(("auto, %6d points: %9.3f ms  (count %d, sigma %.2g; steps in ms: %s)")
         :format(m, ms, rep.count, rep.sigma, table.concat(steps, ", ")))
+end
+
+-- sections of lines and arcs, through the pieces
+local function polygon(v, per, sigma, seed)
+  local t, s = {}, seed or 1
+  local function rnd() s = (s * 1103515245 + 12345) % 2147483648; return (s + 0.5) / 2147483648 end
+  local function gauss() return math.sqrt(-2 * math.log(rnd())) * math.cos(2 * math.pi * rnd()) end
+  for i = 1, #v do
+    local a, b = v[i], v[i % #v + 1]
+    for j = 1, per do
+      local f = (j - 0.5) / per
+      t[#t + 1] = { a[1] + f * (b[1] - a[1]) + sigma * gauss(), a[2] + f * (b[2] - a[2]) + sigma * gauss() }
+    end
+  end
+  return bs.points.new(t)
+end
+local function dshape(m)
+  local t, nl = {}, math.floor(m * 2 / (2 + math.pi))
+  for i = 0, nl - 1 do t[#t + 1] = { -10 + 20 * (i + 0.5) / nl, 0 } end
+  for i = 0, m - nl - 1 do
+    local a = math.pi * (i + 0.5) / (m - nl)
+    t[#t + 1] = { 10 * math.cos(a), 10 * math.sin(a) }
+  end
+  return bs.points.new(t)
+end
+local function rrect(per, sigma)
+  local t, s, r = {}, 5, 1.5
+  local function rnd() s = (s * 1103515245 + 12345) % 2147483648; return (s + 0.5) / 2147483648 end
+  local function gauss() return math.sqrt(-2 * math.log(rnd())) * math.cos(2 * math.pi * rnd()) end
+  local corners = { { 60 - r, r }, { 60 - r, 30 - r }, { r, 30 - r }, { r, r } }
+  local sides = { { { r, 0 }, { 60 - r, 0 } }, { { 60, r }, { 60, 30 - r } }, { { 60 - r, 30 }, { r, 30 } },
+                  { { 0, 30 - r }, { 0, r } } }
+  for k = 1, 4 do
+    local a, b = sides[k][1], sides[k][2]
+    for j = 1, per do
+      local f = (j - 0.5) / per
+      t[#t + 1] = { a[1] + f * (b[1] - a[1]) + sigma * gauss(), a[2] + f * (b[2] - a[2]) + sigma * gauss() }
+    end
+    local c = corners[k]
+    for j = 1, per do
+      local ang = -math.pi / 2 + (k - 1) * math.pi / 2 + (j - 0.5) / per * math.pi / 2
+      t[#t + 1] = { c[1] + r * math.cos(ang) + sigma * gauss(), c[2] + r * math.sin(ang) + sigma * gauss() }
+    end
+  end
+  return bs.points.new(t)
+end
+local gear = {}
+for k = 0, 7 do
+  local a, st = 2 * math.pi * k / 8, 2 * math.pi / 8
+  for _, q in ipairs { { 0, 4 }, { 0.3, 4 }, { 0.45, 5 }, { 0.8, 5 }, { 0.95, 4 } } do
+    gear[#gear + 1] = { q[2] * math.cos(a + q[1] * st), q[2] * math.sin(a + q[1] * st) }
+  end
+end
+local T = { { 2, 0 }, { 3, 0 }, { 3, 4 }, { 5, 4 }, { 5, 5 }, { 0, 5 }, { 0, 4 }, { 2, 4 } }
+for _, c in ipairs {
+  { "T, 40 exact points", polygon(T, 5, 0) },
+  { "D, 20 exact points", dshape(20) },
+  { "rounded rectangle, 64 points, noise 1e-4", rrect(8, 6.7e-3) },
+  { "gear, 3000 exact points", polygon(gear, 75, 0) },
+} do
+  local P = c[2]
+  local _, rep = auto.run(P)
+  local ms = time(function() auto.run(P) end, 0.2)
+  print(("auto, %-42s %9.3f ms  (%s, %d pieces, %d corners; segment %.2f ms, assemble %.2f ms)")
+        :format(c[1] .. ":", ms, rep.pieces and "pieces" or "smooth", rep.pieces and #rep.pieces or 0,
+                #rep.corners, rep.times.segment or 0, rep.times.assemble or 0))
 end

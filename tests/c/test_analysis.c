@@ -100,7 +100,7 @@ static size_t detect(const double *xy, size_t m, int closed, size_t *idx, size_t
   memset(&o, 0, sizeof o);
   o.closed = closed;
   assert_true(cap <= 64);
-  assert_int_equal(bsfit_corners_detect(xy, m, 2, &o, found, cap, &count, &st), BSFIT_OK);
+  assert_int_equal(bsfit_corners_detect(xy, m, 2, &o, found, cap, &count, NULL, &st), BSFIT_OK);
   for (k = 0; k < count && k < cap; k++) {
     idx[k] = found[k].index;
     /* the corner point lies within one edge of its sample */
@@ -218,7 +218,7 @@ static void test_corner_point_on_curved_side(void **state) {
     make_dshape(&r, 150, sigmas[i], xy);
     memset(&o, 0, sizeof o);
     o.closed = 1;
-    assert_int_equal(bsfit_corners_detect(xy, 150, 2, &o, found, 8, &count, &st), BSFIT_OK);
+    assert_int_equal(bsfit_corners_detect(xy, 150, 2, &o, found, 8, &count, NULL, &st), BSFIT_OK);
     assert_int_equal(count, 2);
     for (k = 0; k < 2; k++) {
       double d = fmin(hypot(found[k].point[0] - 1.0, found[k].point[1]),

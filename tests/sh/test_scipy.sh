@@ -21,13 +21,21 @@ for path in sorted(glob.glob(sys.argv[1] + "/*.json")):
     if path.endswith("summary.json"):
         continue
     j = json.load(open(path))
-    s = BSpline(np.array(j["knots"]), np.array(j["control_points"]), j["degree"])
+    P = np.array(j["control_points"])
+    w = np.array(j["weights"]) if j.get("weights") is not None else None
+    # a NURBS (auto's curves with circular arcs): the B-spline of the homogeneous points
+    # (w P, w), divided by its last coordinate
+    H = P if w is None else np.column_stack([P * w[:, None], w])
+    s = BSpline(np.array(j["knots"]), H, j["degree"])
     pts = np.loadtxt(path[:-5] + ".csv", delimiter=",", skiprows=1)
     a, b = j["domain"]
     n = len(pts)
     u = a + (b - a) * np.arange(n) / (n if j["periodic"] else n - 1)
     size = np.ptp(pts, axis=0).max()
-    worst = max(worst, np.abs(s(u) - pts[:, :j["dim"]]).max() / size)
+    v = s(u)
+    if w is not None:
+        v = v[:, :-1] / v[:, -1:]
+    worst = max(worst, np.abs(v - pts[:, :j["dim"]]).max() / size)
 sys.exit(0 if worst < 1e-12 else 1)
 PYEOF
   then echo "ok - scipy evaluates the $s curves as bsfit does"; pass=$((pass + 1))

@@ -29,6 +29,7 @@ usage: bsfit reconstruct [INPUT...] [options]
   --count N|auto   control points (default auto: the paper's inversion / 50% rule)
   --tol T          auto, periodic: add control points until the max deviation is <= T
   --open           fit open curves (auto and periodic strategies)
+  --closed         fit closed curves (auto decides from the data when neither is given)
   --samples K      curve samples written to <name>.csv (default 1000)
   --format LIST    any of json,svg,csv,iges,step,dxf (default json,svg,csv)
   --polygon MODE   the control polygon in the pictures: auto (drawn up to 60
@@ -100,6 +101,7 @@ local flags = {
 }
 local switches = {
   ["--open"] = function(o) o.open = true end,
+  ["--closed"] = function(o) o.closed = true end,
   ["-q"] = function(o) o.quiet = true end,
   ["--debug"] = function(o) o.debug = true end,
   ["-h"] = function(o) o.help = true end,
@@ -133,6 +135,7 @@ function M.parse(args)
   end
   if o.tol and o.strategy == "carvalho" then error("--tol needs --strategy auto or periodic (or a FILE.lua)", 0) end
   if o.open and o.strategy == "carvalho" then error("--open needs --strategy auto or periodic (or a FILE.lua)", 0) end
+  if o.open and o.closed then error("--open and --closed contradict each other", 0) end
   return o
 end
 
@@ -233,6 +236,7 @@ local function strategy_opts(spec, w)
   if spec.count then o.count = spec.count end
   if spec.tol then o.tol = spec.tol end
   if spec.open then o.closed = false end
+  if spec.closed and spec.strategy ~= "carvalho" then o.closed = true end -- carvalho: always closed
   if w then o.point_weights = w end
   return o
 end
@@ -254,6 +258,10 @@ function M.section(spec)
     row.max_trusted = rep.max_trusted -- set when the file down-weights some points
     row.start_index = rep.start_index
     row.warnings = M.warnings_text(rep.warnings)
+    -- open or closed as fitted (auto decides from the data), and self-intersections
+    if rep.closed ~= nil then row.closed = rep.closed else row.closed = C:is_periodic() end
+    row.closed = row.closed and "yes" or "no"
+    row.crossings = rep.crossings
     write_outputs(spec, P, C, rep, samples(C, spec.samples), w)
   end, spec.debug and debug.traceback or function(e) return e end)
   if not ok then
@@ -323,7 +331,8 @@ end
 -- =======================================================================
 
 local summary_columns = { "name", "input", "points", "control_points", "rms", "max", "max_index",
-                          "max_trusted", "start_index", "status", "error", "warnings", "index" }
+                          "max_trusted", "start_index", "status", "error", "warnings", "closed",
+                          "crossings", "index" }
 M.summary_columns = summary_columns
 
 local function specs_of(o, inputs)
@@ -331,7 +340,8 @@ local function specs_of(o, inputs)
   for i, inp in ipairs(inputs) do
     specs[i] = { path = inp.path, name = inp.name, index = inp.index, outdir = o.outdir,
                  strategy = o.strategy, degree = o.degree, count = o.count, tol = o.tol,
-                 open = o.open, samples = o.samples, formats = o.formats, polygon = o.polygon,
+                 open = o.open, closed = o.closed, samples = o.samples, formats = o.formats,
+                 polygon = o.polygon,
                  debug = o.debug }
   end
   return specs

@@ -46,7 +46,10 @@ function M.fit(P, ctx)
   local o = { degree = ctx.degree }
   if ctx.count then o.count = ctx.count end
   if ctx.weights then o.point_weights = ctx.weights end
-  if ctx.closed == false then o.closed = false end
+  -- the ordering knows whether the loop closes: say so (auto would otherwise decide it
+  -- from the gap between the last and first points); carvalho is always closed
+  if ctx.closed == false then o.closed = false
+  elseif ctx.closed and (ctx.strategy or "auto") ~= "carvalho" then o.closed = true end
   local C, rep = section_output.load_strategy(ctx.strategy or "auto").run(P, o)
   if not C then error(tostring(rep), 0) end
   return C, rep

@@ -7,47 +7,50 @@
 --   local auto = require "bsfit.strategy.auto"
 --   local C, rep = auto.run(P, {point_weights = w})
 --
--- Steps (each replaceable by name, like every strategy: a function f(P, ctx) or a
--- plain value, e.g. {count = 24} or {corners = {}}):
+-- Steps, in order (each replaceable by name, like every strategy: a function f(P, ctx)
+-- or a plain value, e.g. {count = 24} or {corners = {}}); docs/auto.md has the method:
+--   ends     open or closed from the data when the setting closed = "auto" (default)
 --   sigma    noise level normal to the curve, from the data alone (bs.geom.noise_sigma)
---   params   chord parameters over the trusted points (weight >= trust x median);
---            the others interpolated (bs.params_trusted). Where samples crowd closer
---            than the noise (clusters, a densely sampled trailing edge), chords measure
---            the noise, not the contour: the parameters then run along "anchors" at
---            least 4 sigma apart (on the path smoothed over 5 samples), the samples
---            between two anchors placed by their projection on the anchors' chord, and
---            the knots are placed on the anchors, so a cluster gets neither parameter
---            length nor knots of its own (it would loop)
+--   segment  lines, circular arcs and free runs (bs.geom.segment) when they explain the
+--            section: exactly, or within the noise they show (bsfit.strategy.sharp);
+--            {} otherwise. When it finds them, `assemble` makes the curve and the
+--            smooth-fit steps below (params .. fit) stand aside
+--   params   chord parameters over the trusted points (weight >= trust x median), on
+--            anchors where samples crowd closer than the noise (bsfit.strategy.anchors)
 --   weights  the file's weights (point_weights), else 1
---   corners  sharp corners (bs.geom.corners); a triple knot is put at each, and
---            the knots next to it are kept far enough along its sides for their
---            control points to read the sides' directions off more than noise
---   count    the search: counts grow geometrically from a small start, each fit's
---            parameters corrected once, until the weighted RMS distance reaches the
---            noise level (or stops improving near it, or near it a step buys no more
---            than fitting noise would); `tol` asks for a maximum distance instead
+--   corners  sharp corners (bs.geom.corners): triple knots, the spans beside them kept
+--            long enough to read the sides' directions through the noise
+--   count    the search: counts grow geometrically until the weighted RMS distance
+--            reaches the noise level (or a step buys no more than fitting noise would);
+--            `tol` asks for a maximum distance instead
 --   fit      the final fit: `correct` rounds of parameter correction (foot points)
+--   assemble the one curve of the pieces: exact lines and arcs, fitted free runs, G1 where
+--            they touch, C0 at corners (false when there are no pieces)
 --   reweight optional Huber reweighting, run when the setting robust = true (a step
 --            and a setting cannot share a name: opts[step] replaces the step)
+--   loops    self-intersection check of closed curves; refit with fewer control points
 --   measure  distances of the points to the curve (vectorised projection in C)
--- Settings: degree (3), param ("chord"), closed (true), trust (0.1), correct (3),
--- robust (false), huber (1.345), solver ("auto": Cholesky, QR when the normal matrix
--- is ill-conditioned; see bs.fitter), count_max (m/2 up to 500 points, then m/3, at
--- most 4000); optional:
--- point_weights, tol.
--- rep: count, sigma, corners (1-based indices), tries ({count, rms, max} per fit of
--- the search), rms, max, max_index, residuals (distances), times per step.
+-- Settings: degree (3), param ("chord"), closed ("auto"; true, false), trust (0.1),
+-- correct (3), robust (false), huber (1.345), solver ("auto": Cholesky, QR when the
+-- normal matrix is ill-conditioned; see bs.fitter), count_max (m/2 up to 500 points,
+-- then m/3, at most 4000); optional: point_weights, tol.
+-- rep: count, sigma, corners (1-based indices), tries ({count, rms, max} per fit of the
+-- search), rms, max, max_index, residuals (distances), times per step, closed,
+-- closed_ambiguous, crossings, pieces (when segmented), warnings.
 
 local bs = require "bsfit"
 local common = require "bsfit.strategy.common"
+local sharp = require "bsfit.strategy.sharp"
+local anchors = require "bsfit.strategy.anchors"
 
 local M = { name = "auto" }
 
-M.settings = { degree = 3, param = "chord", closed = true, trust = 0.1, correct = 3,
+M.settings = { degree = 3, param = "chord", closed = "auto", trust = 0.1, correct = 3,
                robust = false, huber = 1.345, solver = "auto" }
 M.optional = { point_weights = true, tol = true, count_max = true }
 
-M.order = { "sigma", "params", "weights", "corners", "count", "fit", "reweight", "measure" }
+M.order = { "ends", "sigma", "segment", "params", "weights", "corners", "count", "fit",
+            "assemble", "reweight", "loops", "measure" }
 
 local steps = {}
 M.steps = steps
@@ -64,7 +67,23 @@ end
 
 local function closed(ctx) return common.closed(ctx) end
 
-local knots_on_anchors
+local size_of, count_range
+
+-- Adds a warning for rep.warnings.
+local function warn(ctx, msg)
+  ctx.warnings = ctx.warnings or {}
+  ctx.warnings[#ctx.warnings + 1] = msg
+end
+
+-- Is the section made into one curve of lines, arcs and free runs (the segment step
+-- found features), rather than fitted as one smooth curve? Not when a step it would
+-- bypass was replaced or a count or tolerance was asked for.
+local function sharp_path(ctx)
+  local o = ctx.opts
+  return type(ctx.segment) == "table" and #ctx.segment > 0 and o.count == nil and
+         o.corners == nil and o.fit == nil and ctx.settings.tol == nil
+end
+
 
 -- The samples' parameters as a Lua array (cached while ctx.params is the same).
 local function params_table(ctx)
@@ -166,7 +185,7 @@ end
 local function knots_for(ctx, n)
   local p = ctx.settings.degree
   if ctx.anchors and not ctx.knot_params then -- the corners step was replaced
-    knots_on_anchors(ctx, ctx.corner_positions or ctx.corners)
+    anchors.knots(ctx, ctx.corner_positions or ctx.corners)
   end
   local u = ctx.knot_params or ctx.params
   if closed(ctx) then
@@ -179,13 +198,20 @@ local function knots_for(ctx, n)
                                                  closed = false }), n
 end
 
--- One fit with knots K on parameters u; reuses the strategy's fitter.
-local function fit_once(ctx, P, K, u, w)
+-- One fit with knots K on parameters u; reuses the strategy's fitter. Returns the
+-- curve, or the fail triple of a numerical outcome (nil, message, code); misuse and bugs
+-- raise.
+local function try_fit(ctx, P, K, u, w)
   local o = { degree = ctx.settings.degree, knots = K, periodic = closed(ctx),
               solver = ctx.settings.solver }
   local F = ctx.cache.fitter
   if F then F:configure(o) else F = bs.fitter(o); ctx.cache.fitter = F end
-  return common.ok("fit", F:fit(P, u, w))
+  return F:fit(P, u, w)
+end
+
+-- The same, raising "fit failed: ..." on a numerical outcome.
+local function fit_once(ctx, P, K, u, w)
+  return common.ok("fit", try_fit(ctx, P, K, u, w))
 end
 
 -- Weighted RMS and maximum of the distances d (Vector) with weights w (Vector). With
@@ -218,235 +244,6 @@ local function every(v, s)
   return bs.vector.new(r)
 end
 
--- {======================================================================
--- Anchors: parameters that samples closer than the noise cannot stretch
--- =======================================================================
-
-local ANCHOR = 4 -- anchors at least ANCHOR sigma apart: a chord across 4 sigma of contour
-                 -- is stretched by the noise of its two ends by ~12%, a chord across less
-                 -- than sigma is mostly noise
-
--- The path the anchors are read from: each point replaced by the mean of the (trusted)
--- points within two samples of it, so that a blob of samples under noise stays put
--- instead of hopping about by a few sigma (it would make anchors of its own).
--- Returns arrays x, y, z (z nil in 2D).
-local function smooth_path(px, py, pz, is_closed, skip)
-  local m = #px
-  local x, y, z = {}, {}, #pz > 0 and {} or nil
-  if not skip and is_closed and m >= 5 then
-    -- a sliding sum of five
-    local sx = px[m - 1] + px[m] + px[1] + px[2] + px[3]
-    local sy = py[m - 1] + py[m] + py[1] + py[2] + py[3]
-    local sz = z and (pz[m - 1] + pz[m] + pz[1] + pz[2] + pz[3]) or 0
-    for i = 1, m do
-      x[i], y[i] = sx / 5, sy / 5
-      if z then z[i] = sz / 5 end
-      local out, inn = (i - 3) % m + 1, (i + 2) % m + 1
-      sx, sy = sx - px[out] + px[inn], sy - py[out] + py[inn]
-      if z then sz = sz - pz[out] + pz[inn] end
-    end
-    return x, y, z
-  end
-  for i = 1, m do
-    local sx, sy, sz, n = 0, 0, 0, 0
-    for o = -2, 2 do
-      local j = i + o
-      if is_closed then j = (j - 1) % m + 1 end
-      if j >= 1 and j <= m and not (skip and skip[j]) then
-        sx, sy, n = sx + px[j], sy + py[j], n + 1
-        if z then sz = sz + pz[j] end
-      end
-    end
-    if n == 0 then sx, sy, sz, n = px[i], py[i], pz[i] or 0, 1 end
-    x[i], y[i] = sx / n, sy / n
-    if z then z[i] = sz / n end
-  end
-  return x, y, z
-end
-
--- Indices (increasing) of the anchors on the path x, y, z: the first point, then each
--- at least delta from the previous anchor; `forced` ({[i] = true}) always are, points
--- with skip[i] never are (untrusted). Closed data: the last anchor must also be delta
--- from the first; open data: the last point is one.
-local function find_anchors(x, y, z, delta, is_closed, skip, forced)
-  local m = #x
-  local idx, a = { 1 }, 1
-  local d2 = delta * delta
-  local function far(i, j)
-    return (x[i] - x[j]) ^ 2 + (y[i] - y[j]) ^ 2 + (z and (z[i] - z[j]) ^ 2 or 0) >= d2
-  end
-  for i = 2, m do
-    if (forced and forced[i]) or (not (skip and skip[i]) and far(i, a)) then
-      idx[#idx + 1] = i; a = i
-    end
-  end
-  if is_closed and #idx > 1 and not (forced and forced[idx[#idx]]) and not far(1, a) then
-    idx[#idx] = nil
-  elseif not is_closed and idx[#idx] ~= m then
-    idx[#idx + 1] = m
-  end
-  return idx
-end
-
--- Do the anchors matter? Only where far more samples crowd between two anchors than
--- between most (clusters, a densely sampled trailing edge): where every gap holds about
--- as many, noise inflates every chord alike, and chord parameters are left alone
--- (they also keep knots denser where the samples are, which often follows the shape).
-local function anchors_matter(idx, m, is_closed)
-  local n, gaps = #idx, {}
-  if n < 4 or n >= m then return false end
-  for r = 1, n - 1 do gaps[r] = idx[r + 1] - idx[r] end
-  if is_closed then gaps[n] = m + idx[1] - idx[n] end
-  local sorted = table.move(gaps, 1, #gaps, 1, {})
-  table.sort(sorted)
-  return sorted[#sorted] > 4 * sorted[(#sorted + 1) // 2] + 2
-end
-
--- Parameters (a Lua array over the path's points) from the anchors idx: chord (or
--- centripetal) lengths between anchors along the path; a point between two anchors
--- goes by how far along their chord it projects, never back (the parameters must not
--- decrease). By index it would not do: a cluster of many samples next to one anchor
--- would take most of the gap from the few that cover it.
-local function anchored_params(x, y, z, idx, kind, is_closed)
-  local m, n = #x, #idx
-  local ua, acc = { 0 }, 0
-  local function chord(i, j)
-    local d = math.sqrt((x[i] - x[j]) ^ 2 + (y[i] - y[j]) ^ 2 + (z and (z[i] - z[j]) ^ 2 or 0))
-    return kind == "centripetal" and math.sqrt(d) or d
-  end
-  for r = 2, n do acc = acc + chord(idx[r], idx[r - 1]); ua[r] = acc end
-  local total = acc
-  if is_closed then total = acc + chord(idx[1], idx[n]) end
-  if not (total > 0) then return nil end
-  local u = {}
-  for r = 1, n do
-    local a, ub = idx[r], (r < n and ua[r + 1] or total)
-    local b = r < n and idx[r + 1] or (is_closed and m + idx[1] or a)
-    local u0 = ua[r]
-    u[a] = u0 / total
-    if b > a + 1 then
-      local bb = (b - 1) % m + 1
-      local dx, dy, dz = x[bb] - x[a], y[bb] - y[a], z and z[bb] - z[a] or 0
-      local dd, tmax = dx * dx + dy * dy + dz * dz, 0
-      for i = a + 1, b - 1 do
-        local ii = (i - 1) % m + 1
-        local t = (i - a) / (b - a)
-        if dd > 0 then
-          t = ((x[ii] - x[a]) * dx + (y[ii] - y[a]) * dy + (z and (z[ii] - z[a]) * dz or 0)) / dd
-          t = math.min(math.max(t, tmax), 1)
-          tmax = t
-        end
-        u[ii] = (u0 + (ub - u0) * t) / total
-      end
-    end
-  end
-  -- closed: never exactly 1 (the period is [0, 1))
-  if is_closed then
-    local below1 = 1 - 2 ^ -52
-    for i = 1, m do if u[i] >= 1 then u[i] = below1 end end
-  end
-  return u
-end
-
--- The anchors of the section (ctx.anchors = indices into P) when they matter, read
--- from P itself or, for a large section, from its subsample (whose parameters are then
--- interpolated by index to the points between); `forced` adds indices of P that must
--- be anchors (the samples around a corner; subsample points for a large section).
--- Returns the parameters (Vector), or nil.
-local function anchor_params(P, ctx, forced)
-  local s = ctx.settings
-  if not (ctx.sigma and ctx.sigma > 0) or s.param == "uniform" or #P < 12 then return nil end
-  local delta, is_closed = ANCHOR * ctx.sigma, closed(ctx)
-  local trusted = common.trusted(ctx)
-  local sub = subsample(ctx, P)
-  local W, st = sub and sub.P or P, sub and sub.stride or 1
-  local skip
-  if trusted then
-    -- the untrusted points (common.trusted lists them, or masks the trusted ones)
-    local out = trusted.out
-    if not out then
-      out = {}
-      for i, ok in ipairs(trusted.mask) do if not ok then out[#out + 1] = i end end
-    end
-    skip = {}
-    for _, i in ipairs(out) do
-      if i == 1 then return nil end -- the parameters start at a trusted point
-      if (i - 1) % st == 0 then skip[(i - 1) // st + 1] = true end
-    end
-  end
-  local wforced
-  if forced then
-    wforced = {}
-    for i in pairs(forced) do wforced[(i - 1) // st + 1] = true end
-    for _, i in ipairs(ctx.anchors) do wforced[(i - 1) // st + 1] = true end
-  end
-  -- A gap between anchors holds many samples only where samples 6 apart are within
-  -- delta of each other: without any, nothing to do (the common case, checked first).
-  local mw, px, py, pz = #W, {}, {}, {}
-  for i = 1, mw do px[i], py[i], pz[i] = W:get(i) end
-  if not forced then
-    local crowded, d2 = false, delta * delta
-    for i = 1, mw - 6 do
-      local j = i + 6
-      if (px[j] - px[i]) ^ 2 + (py[j] - py[i]) ^ 2 + (pz[i] and (pz[j] - pz[i]) ^ 2 or 0) < d2 then
-        crowded = true
-        break
-      end
-    end
-    if not crowded then return nil end
-  end
-  local x, y, z = smooth_path(px, py, pz, is_closed, skip)
-  local widx = find_anchors(x, y, z, delta, is_closed, skip, wforced)
-  if not forced and not anchors_matter(widx, #W, is_closed) then return nil end
-  local wu = anchored_params(x, y, z, widx, s.param, is_closed)
-  if not wu then return nil end
-  local idx = {}
-  for r, k in ipairs(widx) do idx[r] = (k - 1) * st + 1 end
-  ctx.anchors = idx
-  if not sub then return bs.vector.new(wu) end
-  -- every point of P from the subsample's parameters, by index in between
-  local m, nw, u = #P, #W, {}
-  for k = 1, nw do
-    local i0, u0 = (k - 1) * st + 1, wu[k]
-    local i1, u1 = k < nw and k * st + 1 or (is_closed and m + 1 or m), k < nw and wu[k + 1] or (is_closed and 1 or 1)
-    u[i0] = u0
-    for i = i0 + 1, math.min(i1 - 1, m) do u[i] = u0 + (u1 - u0) * (i - i0) / (i1 - i0) end
-  end
-  if is_closed then
-    local below1 = 1 - 2 ^ -52
-    for i = 1, m do if u[i] >= 1 then u[i] = below1 end end
-  end
-  return bs.vector.new(u)
-end
-
--- The knots' parameters and corner positions in anchor space (ctx.knot_params,
--- ctx.knot_breaks), once the parameters are final: the averaging rule then spreads
--- knots over the anchors, not over the crowded samples.
-function knots_on_anchors(ctx, positions)
-  local idx = ctx.anchors
-  if not idx then ctx.knot_params, ctx.knot_breaks = nil, nil; return end
-  local u = ctx.params:totable()
-  local ka = {}
-  for r, i in ipairs(idx) do ka[r] = u[i] end
-  ctx.knot_params = bs.vector.new(ka)
-  if positions and #positions > 0 then
-    local m, kb, r = #u, {}, 1
-    for c, pos in ipairs(positions) do
-      local j = math.floor(pos)
-      local f = pos - j
-      local uj, uk = u[j], (j < m and u[j + 1] or 1)
-      local uc = uj + f * (uk - uj)
-      while r < #idx and idx[r + 1] <= j do r = r + 1 end
-      local a, b = ka[r], (r < #idx and ka[r + 1] or 1)
-      kb[c] = r + (b > a and math.min(math.max((uc - a) / (b - a), 0), 1 - 1e-6) or 0)
-      -- two corners within one gap of anchors (closer than 4 sigma) keep their order
-      if c > 1 and kb[c] <= kb[c - 1] then kb[c] = kb[c - 1] + 1e-9 end
-    end
-    ctx.knot_breaks = kb
-  end
-end
-
--- }======================================================================
 
 local NEWTON = 4 -- Newton steps per foot point: the start is always close
 
@@ -465,8 +262,10 @@ local function fit_corrected(ctx, P, n, rounds, measure_sub)
   -- a search fit of a large section: the subsample alone, while it has points to spare
   -- in every span (the count is read off statistics of 5000 points either way)
   if sub and rounds == 0 and N * 4 <= #sub.P then
-    local ok, C = pcall(fit_once, ctx, sub.P, K, sub.u, sub.w)
-    if ok then
+    -- a subsample the knots leave a span without data fails numerically (the fail
+    -- triple): then every point is fitted; anything else is a bug and raises
+    local C = try_fit(ctx, sub.P, K, sub.u, sub.w)
+    if C then
       local _, ds = C:project(sub.P, sub.u, NEWTON)
       return C, u, ds, N, sub.w, #sub.P
     end
@@ -492,11 +291,139 @@ end
 -- Steps
 -- =======================================================================
 
+-- Lines, arcs and free runs (bs.geom.segment), when lines and arcs explain the section:
+--   exact data: runs of 3 samples collinear, or 4 concyclic, to 1e-10 of the size,
+--     holding half the samples (this does not happen by chance under noise);
+--   noisy data: the noise read off the lines' and arcs' own residuals
+--     (bs.geom.segment_sigma) is not above the window estimate (ctx.sigma) by more than
+--     a factor 1.6 (where it is, windows explain the samples better than lines and arcs:
+--     a smooth curve; where it is far below, the samples are too sparse for windows),
+--     lines and arcs hold 90% of the samples, no two lines meet tangentially (a polygon
+--     drawn along a smooth curve), and every corner turns by 15 degrees at least and is
+--     worth 25 sigma^2 over one smooth curve through both its sides (EVIDENCE).
+-- Returns the pieces, or {} (one smooth curve).
+local EVIDENCE, MIN_TURN, AGREE = 25, 15, 1.25
+local NOISY_MAX = 500 -- larger noisy sections keep the smooth path (the noise search costs m r)
+
+local function noisy_pieces(P, ctx)
+  if not (ctx.sigma > 0) then return nil end
+  local s = common.ok("noise of the pieces", bs.geom.segment_sigma(P, { closed = closed(ctx),
+                                                                      max = AGREE * ctx.sigma }))
+  if not (s > 0 and s < AGREE * ctx.sigma) then return nil end
+  local pieces = common.ok("segmentation", bs.geom.segment(P, { closed = closed(ctx), sigma = s }))
+  local held = 0
+  for i, p in ipairs(pieces) do
+    if p.kind ~= "free" then held = held + p.count end
+    if p.kind == "free" and p.count == 0 then return nil end -- two models that do not meet
+    if p.join == "corner" and (p.turn < MIN_TURN or p.evidence < EVIDENCE) then return nil end
+    local q = pieces[(i - 2) % #pieces + 1]
+    if p.join == "tangent" and p.kind == "line" and q.kind == "line" and #pieces > 1 then return nil end
+  end
+  if held < 0.9 * #P then return nil end
+  -- the curve itself must stay within the noise of every sample (6 sigma)
+  local C = sharp.assemble(P, pieces, { closed = closed(ctx), sigma = s })
+  local _, d = C:closest_many(P)
+  if d:max() > 6 * s then return nil end
+  ctx.segment_sigma, ctx.sharp_curve = s, C
+  return pieces
+end
+
+function steps.segment(P, ctx)
+  -- down-weighted points and Huber reweighting ask for a fit that discounts samples: the
+  -- pieces follow every sample they hold, so such sections take the smooth path
+  if P:dim() ~= 2 or #P < 6 or ctx.settings.robust or common.trusted(ctx) then return {} end
+  -- a large section is screened on its subsample first: noisy data has no exact runs
+  local sub = subsample(ctx, P)
+  if sub and not ctx.cache.exact_pieces then
+    local screen = common.ok("segmentation", bs.geom.segment(sub.P, { closed = closed(ctx) }))
+    if not sharp.has_features(screen, #sub.P) then return {} end
+  end
+  local pieces = ctx.cache.exact_pieces or
+                 common.ok("segmentation", bs.geom.segment(P, { closed = closed(ctx) }))
+  if sharp.has_features(pieces, #P) then ctx.segment_sigma = 0; return pieces end
+  if #P <= NOISY_MAX then return noisy_pieces(P, ctx) or {} end
+  return {}
+end
+
 function steps.params(P, ctx)
-  local u = anchor_params(P, ctx)
+  if sharp_path(ctx) then return bs.params(P, ctx.settings.param, { closed = closed(ctx) }) end
+  local u = anchors.params(P, ctx, nil, subsample(ctx, P))
   if u then return u end
   return common.ok("params", bs.params_trusted(P, ctx.settings.param, {
     closed = closed(ctx), weights = ctx.settings.point_weights, trust = ctx.settings.trust }))
+end
+
+-- Open or closed (setting closed = "auto", the default): from the gap between the last
+-- and the first point against the steps next to them (the two at each end, h_loc: a
+-- closed section's closing step is like its neighbours, while sections sampled sparsely
+-- along long sides have steps far longer elsewhere) and twice the median step, h =
+-- max(h_loc, 2 h_med). A gap up to 1.5 h closes the section; one above 2.5 h opens it;
+-- between, the section is closed when the closing chord continues both ends (turns by
+-- at most 100 degrees from the last step and into the first: an open run's ends point
+-- away from each other), and the decision is reported as ambiguous (rep.closed_ambiguous,
+-- a warning). Exact lines and arcs that cover the section and meet across the gap close
+-- it in any case. closed = true or false is taken as given.
+function steps.ends(P, ctx)
+  local c = ctx.settings.closed
+  if c == true or c == false then return c and "closed" or "open" end
+  if c ~= "auto" then
+    error("bad argument #2 to 'run' (option 'closed' must be true, false or \"auto\")", 0)
+  end
+  local m = #P
+  local function step(i, j)
+    local a, b, d2 = { P:get(i) }, { P:get(j) }, 0
+    for k = 1, #a do d2 = d2 + (a[k] - b[k]) ^ 2 end
+    return math.sqrt(d2)
+  end
+  -- the steps between distinct points (repeated points take no part)
+  local all = {}
+  for i = 1, m - 1, math.max(1, (m - 1) // 2000) do -- at most ~2000 steps read
+    local d = step(i, i + 1)
+    if d > 0 then all[#all + 1] = d end
+  end
+  for _, i in ipairs { m - 2, m - 1 } do -- the last two steps, for h_loc
+    if i >= 1 and (m - 1) > 2000 then
+      local d = step(i, i + 1)
+      if d > 0 then all[#all + 1] = d end
+    end
+  end
+  if #all == 0 then ctx.settings.closed = true; return "closed" end -- coincident: the fit says so
+  local hloc = math.max(all[1], all[math.min(2, #all)], all[#all], all[math.max(#all - 1, 1)])
+  table.sort(all)
+  local hmed = all[(#all + 1) // 2]
+  local gap, h = step(m, 1), math.max(hloc, 2 * hmed)
+  local closed_, clear
+  if gap <= 1.5 * h then closed_, clear = true, true
+  elseif gap > 2.5 * h then closed_, clear = false, true
+  else
+    local function turn(i, j, k) -- degrees between steps i->j and j->k
+      local a, b, c = { P:get(i) }, { P:get(j) }, { P:get(k) }
+      local dot, na, nb = 0, 0, 0
+      for q = 1, #a do
+        local u, v = b[q] - a[q], c[q] - b[q]
+        dot, na, nb = dot + u * v, na + u * u, nb + v * v
+      end
+      if na == 0 or nb == 0 then return 0 end
+      return math.deg(math.acos(math.max(-1, math.min(1, dot / math.sqrt(na * nb)))))
+    end
+    closed_, clear = math.max(turn(m - 1, m, 1), turn(m, 1, 2)) <= 100, false
+  end
+  -- exact lines and arcs that meet across the gap close it, whatever the spacing
+  if not closed_ and P:dim() == 2 and m >= 6 then
+    local pieces = bs.geom.segment(P, { closed = true })
+    if pieces and sharp.has_features(pieces, m) then
+      local meet = true
+      for _, p in ipairs(pieces) do if p.kind == "free" and p.count == 0 then meet = false end end
+      if meet then closed_, clear, ctx.cache.exact_pieces = true, true, pieces end
+    end
+  end
+  ctx.settings.closed = closed_
+  if not clear then
+    ctx.closed_ambiguous = true
+    warn(ctx, ("open or closed is ambiguous (gap %.3g between the last and first points, steps "
+      .. "%.3g near them): fitted %s; say --open or --closed"):format(gap, hloc, closed_ and "closed" or "open"))
+  end
+  return closed_ and "closed" or "open"
 end
 
 function steps.sigma(P, ctx)
@@ -514,13 +441,14 @@ function steps.weights(P, ctx)
 end
 
 function steps.corners(P, ctx)
-  if not closed(ctx) or #P < 12 then knots_on_anchors(ctx); return {} end
+  if sharp_path(ctx) then return sharp.corner_samples(P, ctx.segment) end
+  if not closed(ctx) or #P < 12 then anchors.knots(ctx); return {} end
   local o = { closed = true }
   if ctx.sigma > 0 then o.sigma = ctx.sigma end
   local sub = subsample(ctx, P)
   local idx, turns, where, at = bs.geom.corners(sub and sub.P or P, o)
   common.ok("corners", idx, turns, where)
-  if #idx == 0 then knots_on_anchors(ctx); return {} end
+  if #idx == 0 then anchors.knots(ctx); return {} end
   local m = #P
   local tt = turns:totable()
   if sub then
@@ -532,8 +460,8 @@ function steps.corners(P, ctx)
     for i, k in ipairs(order) do ctx.corner_turns[i] = tt[k] end
     table.sort(full)
     ctx.corner_positions = full
-    if ctx.anchors then ctx.params = anchor_params(P, ctx, forced) or ctx.params end
-    knots_on_anchors(ctx, full)
+    if ctx.anchors then ctx.params = anchors.params(P, ctx, forced, subsample(ctx, P)) or ctx.params end
+    anchors.knots(ctx, full)
     return full
   end
   -- positions in increasing order (the first corner's may wrap to just below m + 1),
@@ -555,7 +483,7 @@ function steps.corners(P, ctx)
       local a, b = { P:get(j) }, { P:get(j % m + 1) }
       local d2 = 0
       for k = 1, #a do d2 = d2 + (a[k] - b[k]) ^ 2 end
-      if d2 >= (ANCHOR * ctx.sigma) ^ 2 then
+      if d2 >= (anchors.ANCHOR * ctx.sigma) ^ 2 then
         far[#far + 1] = j
         fpos[#fpos + 1], fpts[#fpts + 1] = x, spts[i]
       end
@@ -566,18 +494,18 @@ function steps.corners(P, ctx)
     -- corner's chord is one the corner parameters can stretch
     local forced = {}
     for _, j in ipairs(far) do forced[j] = true; forced[j % m + 1] = true end
-    ctx.params = anchor_params(P, ctx, forced) or ctx.params
+    ctx.params = anchors.params(P, ctx, forced, subsample(ctx, P)) or ctx.params
   end
   if #fpos > 0 then
     ctx.params = common.ok("corner parameters", bs.params_through_corners(P, ctx.params,
       bs.vector.new(fpos), bs.points.new(fpts), ctx.settings.param, { closed = true }))
   end
-  knots_on_anchors(ctx, spos)
+  anchors.knots(ctx, spos)
   return as_table(idx)
 end
 
 -- The smallest and largest counts the search may try.
-local function count_range(P, ctx)
+function count_range(P, ctx)
   local m, p = #P, ctx.settings.degree
   local nmin = math.max(p + 1, closed(ctx) and (#ctx.corners * p + 4) or 0, math.min(8, m // 2))
   -- small sections may use as many as the paper's 50% rule; large ones a third,
@@ -599,7 +527,7 @@ end
 -- noise level is never reached, stop when two steps in a row improve less than 2% on
 -- the best fit (knots move with the count, so more is not always better) and keep the
 -- best. With tol: grow until the maximum distance is at most tol.
-local function size_of(P)
+function size_of(P)
   local m, b, size = #P, { P:get(1) }, 0
   for i = 2, m, math.max(1, m // 64) do
     local q, dd = { P:get(i) }, 0
@@ -610,6 +538,7 @@ local function size_of(P)
 end
 
 function steps.count(P, ctx)
+  if sharp_path(ctx) then return 0 end -- the assemble step's
   local m = #P
   local n, nmax = count_range(P, ctx)
   local tol, sigma = ctx.settings.tol, ctx.sigma
@@ -650,6 +579,7 @@ end
 
 -- Final fit: the count found, `correct` rounds of parameter correction.
 function steps.fit(P, ctx)
+  if sharp_path(ctx) then return false end -- the assemble step's
   -- on large sections one correction round does nearly all the good (and each costs a
   -- projection of every point)
   local rounds = ctx.settings.correct
@@ -659,10 +589,21 @@ function steps.fit(P, ctx)
   return C
 end
 
+-- The one curve of the pieces (bsfit.strategy.sharp): exact lines and arcs, free runs
+-- fitted between them, joined; false when the section is fitted as one smooth curve.
+function steps.assemble(P, ctx)
+  if not sharp_path(ctx) then return false end
+  local pw = ctx.settings.point_weights
+  local C = ctx.sharp_curve or sharp.assemble(P, ctx.segment, {
+    closed = closed(ctx), sigma = ctx.segment_sigma or 0, weights = pw and as_table(pw) or nil })
+  ctx.count = C:distinct()
+  return C
+end
+
 -- Optional Huber reweighting: points farther than huber x sigma from the curve get
 -- weight w c/|d|; three rounds.
 function steps.reweight(P, ctx)
-  if not ctx.settings.robust then return ctx.curve end
+  if not ctx.settings.robust or sharp_path(ctx) then return ctx.curve end
   local c = ctx.settings.huber * math.max(ctx.sigma, 1e-12)
   local base = ctx.weights:totable()
   local C, u, d = ctx.curve, ctx.params_final, ctx.distances
@@ -678,7 +619,38 @@ function steps.reweight(P, ctx)
   return C
 end
 
+-- Never a loop: a closed 2D curve is checked for self-intersection (a sweep over max(500, 16 n)
+-- samples in C). A smooth fit that crosses itself is refitted with fewer control points
+-- (0.8 times, three times at most); a crossing that remains, or one of the pieces' curve,
+-- is reported in rep.warnings and rep.crossings. Returns the number of crossings.
+function steps.loops(P, ctx)
+  local C = ctx.curve
+  if not closed(ctx) or P:dim() ~= 2 then return 0 end
+  local k = math.max(500, 16 * C:distinct())
+  local n, where = bs.geom.self_intersections(C, k)
+  local tries = 0
+  while n > 0 and not sharp_path(ctx) and tries < 3 and ctx.opts.count == nil do
+    local lo = select(1, count_range(P, ctx))
+    local fewer = math.max(lo, math.floor(0.8 * ctx.count))
+    if fewer >= ctx.count then break end
+    local C2, u, d = fit_corrected(ctx, P, fewer, ctx.sub and 1 or ctx.settings.correct)
+    local n2, w2 = bs.geom.self_intersections(C2, k)
+    tries = tries + 1
+    ctx.count = fewer
+    if n2 < n or n2 == 0 then
+      C, n, where = C2, n2, w2
+      ctx.curve, ctx.params_final, ctx.distances, ctx.distances_of = C2, u, d, C2
+    end
+  end
+  if n > 0 then
+    warn(ctx, ("the curve crosses itself (%d crossing%s, first near parameter %.4g)"):format(
+      n, n == 1 and "" or "s", where))
+  end
+  return n
+end
+
 function steps.measure(P, ctx)
+  if sharp_path(ctx) then return common.measure(P, ctx) end
   local d = ctx.distances -- the fit's last projection, when it is of this very curve
   if ctx.distances_of ~= ctx.curve or d == nil then
     d = select(2, ctx.curve:project(P, ctx.params_final or ctx.params, NEWTON))
@@ -698,6 +670,15 @@ function M.report(ctx)
   rep.sigma = ctx.sigma
   rep.corners = ctx.corners
   rep.tries = ctx.tries
+  rep.closed = closed(ctx)
+  rep.closed_ambiguous = ctx.closed_ambiguous or false
+  rep.crossings = ctx.loops or 0
+  if sharp_path(ctx) then rep.pieces = ctx.segment end
+  -- warnings: appended to those the common report may already carry
+  if ctx.warnings and #ctx.warnings > 0 then
+    rep.warnings = rep.warnings or {}
+    for _, w in ipairs(ctx.warnings) do rep.warnings[#rep.warnings + 1] = w end
+  end
   return rep
 end
 

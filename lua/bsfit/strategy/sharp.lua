@@ -1,0 +1,198 @@
+-- lua/bsfit/strategy/sharp.lua
+-- The one curve of a section made of lines, circular arcs and free-form runs (issue 14),
+-- used by the `auto` strategy's `segment` and `assemble` steps:
+--
+--   local sharp = require "bsfit.strategy.sharp"
+--   local pieces = bs.geom.segment(P, {closed = true})      -- lines, arcs, free runs
+--   local C, info = sharp.assemble(P, pieces, {closed = true, sigma = 0, weights = w})
+--
+-- Lines become cubics with collinear control points, arcs exact rational cubics
+-- (bs.curve.arc), free runs a least-squares cubic (bs.fitter) whose ends are fixed at
+-- the neighbouring primitives' ends with their tangents (G1); bs.curve.join makes them
+-- one curve with knots of multiplicity 3 at the joins. On exact data (sigma 0) a free
+-- run is interpolated (the clamped cubic spline with end tangents: knots at its
+-- samples' parameters); on noisy data its count grows until its RMS reaches the noise.
+
+local bs = require "bsfit"
+
+local M = {}
+
+local function dist(a, b) return math.sqrt((a[1] - b[1]) ^ 2 + (a[2] - b[2]) ^ 2) end
+
+-- the samples of a piece, as a Lua array of {x, y}, and their weights
+local function piece_samples(P, p, w)
+  local m, q, ww = #P, {}, {}
+  for k = 0, p.count - 1 do
+    local i = (p.first - 1 + k) % m + 1
+    q[#q + 1] = { P:get(i) }
+    ww[#ww + 1] = w and w[i] or 1
+  end
+  return q, ww
+end
+
+-- chord parameters in [0, 1] of the polyline pts; its length
+local function chord_params(pts)
+  local u, acc = { 0 }, 0
+  for i = 2, #pts do acc = acc + dist(pts[i], pts[i - 1]); u[i] = acc end
+  if acc <= 0 then return nil, 0 end
+  for i = 2, #pts do u[i] = u[i] / acc end
+  u[#pts] = 1
+  return u, acc
+end
+
+-- the cubic from a to b leaving a along ta and reaching b along tb, no data between
+local function hermite(a, b, ta, tb)
+  local L = dist(a, b) / 3
+  return bs.curve.new { degree = 3, control_points = {
+    a, { a[1] + L * ta[1], a[2] + L * ta[2] }, { b[1] - L * tb[1], b[2] - L * tb[2] }, b } }
+end
+
+-- knots for n control points over the samples' parameters u[3..#u-2] (u[1] = u[2] and
+-- u[#u-1] = u[#u] are the fixed ends): at the parameters themselves when n = their
+-- number + 4 (interpolation), else at their quantiles
+local function quantile_knots(u, n)
+  local inner, kv = {}, { 0, 0, 0, 0 }
+  for i = 3, #u - 2 do inner[#inner + 1] = u[i] end
+  if n == #inner + 4 then
+    for _, x in ipairs(inner) do kv[#kv + 1] = x end
+    for _ = 1, 4 do kv[#kv + 1] = 1 end
+    return bs.knots.new { degree = 3, values = kv }
+  end
+  for j = 1, n - 4 do
+    local x = j * #inner / (n - 3)
+    local i = math.floor(x)
+    local f = x - i
+    local lo = inner[math.max(i, 1)] or 0
+    local hi = inner[math.min(i + 1, #inner)] or 1
+    kv[#kv + 1] = lo + f * (hi - lo)
+  end
+  for _ = 1, 4 do kv[#kv + 1] = 1 end
+  return bs.knots.new { degree = 3, values = kv }
+end
+
+-- One free run: fixed ends at the pieces' ends, tangents of the neighbours (G1).
+-- Exact data: interpolated; noisy: the fewest control points whose RMS reaches sigma.
+local function free_run(P, p, o)
+  local inner, ww = piece_samples(P, p, o.weights)
+  local a, b = p.start, p["end"]
+  if #inner == 0 then return hermite(a, b, p.t_start, p.t_end) end
+  local pts, w = { a, a }, { 1, 1 }
+  for i, q in ipairs(inner) do pts[#pts + 1] = q; w[#w + 1] = ww[i] end
+  pts[#pts + 1], pts[#pts + 2] = b, b
+  w[#w + 1], w[#w + 2] = 1, 1
+  local u, L = chord_params(pts)
+  if not u then return hermite(a, b, p.t_start, p.t_end) end
+  local Q, U, W = bs.points.new(pts), bs.vector.new(u), bs.vector.new(w)
+  local base = { degree = 3, fix_ends = true, solver = "auto",
+                 tangent_start = { L * p.t_start[1], L * p.t_start[2] },
+                 tangent_end = { L * p.t_end[1], L * p.t_end[2] } }
+  local c = #inner
+  local counts = {}
+  if o.sigma <= 0 then counts = { c + 4 }
+  else
+    local n = 4
+    while n < c + 4 do counts[#counts + 1] = n; n = math.max(n + 1, math.floor(n * 1.4)) end
+    counts[#counts + 1] = c + 4
+  end
+  local best
+  for _, n in ipairs(counts) do
+    base.knots = quantile_knots(u, n)
+    local C, rep = bs.fitter(base):fit(Q, U, W)
+    if C then
+      best = C
+      if o.sigma > 0 and rep.rms * math.sqrt(#pts / math.max(c, 1)) <= 1.2 * o.sigma then break end
+    end
+  end
+  return best or hermite(a, b, p.t_start, p.t_end)
+end
+
+-- The curve of one piece and its length.
+local function piece_curve(P, p, o)
+  if p.kind == "line" then return bs.curve.line(p.start, p["end"]), dist(p.start, p["end"]) end
+  if p.kind == "arc" then
+    -- through both ends exactly: the centre moved to the ends' perpendicular bisector
+    -- (on noisy data a tangent join lies within the tolerance of the circle, not on it;
+    -- on exact data nothing moves)
+    local a, b, c = p.start, p["end"], p.centre
+    local mx, my, dx, dy = (a[1] + b[1]) / 2, (a[2] + b[2]) / 2, b[1] - a[1], b[2] - a[2]
+    local l2 = dx * dx + dy * dy
+    if l2 > 0 then
+      local t = ((c[1] - mx) * dx + (c[2] - my) * dy) / l2
+      c = { c[1] - t * dx, c[2] - t * dy }
+    end
+    local r = dist(a, c)
+    local a0, a1 = math.atan(a[2] - c[2], a[1] - c[1]), math.atan(b[2] - c[2], b[1] - c[1])
+    local sweep = a1 - a0
+    if p.sweep > 0 then
+      while sweep <= 0 do sweep = sweep + 2 * math.pi end
+    else
+      while sweep >= 0 do sweep = sweep - 2 * math.pi end
+    end
+    if l2 == 0 then sweep = p.sweep end -- a whole circle
+    return bs.curve.arc { centre = c, radius = r, start = a0, sweep = sweep }, r * math.abs(sweep)
+  end
+  local C = free_run(P, p, o)
+  return C, math.max(C:length(), 1e-300)
+end
+
+-- Does the segmentation of m samples carry features worth one curve of pieces? Lines
+-- and arcs must hold at least half the samples: a short run that rounded data fits
+-- by chance (4 samples of a cam's base circle, to 6 decimals) does not make a section
+-- of lines and arcs.
+function M.has_features(pieces, m)
+  local held = 0
+  for _, p in ipairs(pieces) do if p.kind ~= "free" then held = held + p.count end end
+  return held >= 0.5 * m
+end
+
+-- A closed curve joined from pieces (clamped, its ends equal) in the periodic form
+-- (the seam a knot of multiplicity 3), as the other strategies return closed curves.
+local function periodic_of(C)
+  local ctrl, kv, w = C:control_points():totable(), C:knots():totable(), C:weights()
+  if w then w = w:totable() end
+  local n = #ctrl
+  local pts, ws, period = {}, w and {} or nil, { 0 }
+  for i = 1, n - 1 do pts[i] = ctrl[i]; if ws then ws[i] = w[i] end end
+  for i = 5, n do period[#period + 1] = kv[i] end -- the inner knots
+  for _ = 1, 3 do period[#period + 1] = 1 end     -- the seam: C(0) = C(1) = P_1
+  return bs.curve.new { degree = 3, periodic = true, control_points = pts, weights = ws,
+                        knots = period }
+end
+
+-- The one curve of the pieces (see the head of this file). o: closed, sigma, weights
+-- (Lua array or nil). Returns the curve and the parameter range of each piece.
+function M.assemble(P, pieces, o)
+  local parts, lens, total = {}, {}, 0
+  for i, p in ipairs(pieces) do
+    parts[i], lens[i] = piece_curve(P, p, o)
+    total = total + lens[i]
+  end
+  local C = bs.curve.join(parts, lens)
+  local acc = 0
+  for i, p in ipairs(pieces) do
+    p.range = { acc / total, (acc + lens[i]) / total }
+    acc = acc + lens[i]
+  end
+  pieces[#pieces].range[2] = 1
+  if o.closed then C = periodic_of(C) end
+  return C
+end
+
+-- 1-based samples nearest to the corners (for rep.corners)
+function M.corner_samples(P, pieces)
+  local out, m = {}, #P
+  for _, p in ipairs(pieces) do
+    if p.join == "corner" then
+      local best, bi = math.huge, 1
+      for _, i in ipairs { p.first, (p.first - 2) % m + 1 } do
+        local d = dist({ P:get(i) }, p.start)
+        if d < best then best, bi = d, i end
+      end
+      out[#out + 1] = bi
+    end
+  end
+  table.sort(out)
+  return out
+end
+
+return M

@@ -1,0 +1,149 @@
+/*
+** bsfit_features.h
+** Sharp features of a section (issue 14): its segmentation into straight lines,
+** circular arcs and free-form runs meeting at corners or tangentially, and the
+** assembly of one degree-3 curve (NURBS when it has arcs) from such pieces.
+** Included by bsfit.h; include bsfit.h rather than this file.
+*/
+#ifndef BSFIT_FEATURES_H
+#define BSFIT_FEATURES_H
+
+#include "bsfit.h"
+
+/** What a piece of a segmented section is. */
+typedef enum bsfit_piece_kind {
+  BSFIT_PIECE_LINE = 0, /**< a straight segment */
+  BSFIT_PIECE_ARC = 1,  /**< a circular arc */
+  BSFIT_PIECE_FREE = 2  /**< a free-form run (fitted by least squares by the caller) */
+} bsfit_piece_kind;
+
+/** How a piece meets the one before it. */
+typedef enum bsfit_join_kind {
+  BSFIT_JOIN_END = 0,     /**< first piece of an open section: no predecessor */
+  BSFIT_JOIN_CORNER = 1,  /**< C0: the two pieces' directions differ */
+  BSFIT_JOIN_TANGENT = 2  /**< G1: the directions agree (line into fillet, arc into arc) */
+} bsfit_join_kind;
+
+/** One piece of a segmentation (2D). */
+typedef struct bsfit_piece {
+  bsfit_piece_kind kind;
+  bsfit_join_kind join;   /**< how it meets the previous piece (the last, for closed) */
+  size_t first, count;    /**< its samples: count of them from first (0-based, modulo m for
+                               closed sections); a free piece that only bridges two
+                               primitives whose models do not meet has none */
+  double start[2], end[2];/**< its end points: where it meets its neighbours */
+  double t_start[2], t_end[2]; /**< unit tangents at its ends (along the traversal) */
+  double centre[2];       /**< arcs: the centre */
+  double radius;          /**< arcs: the radius (0 otherwise) */
+  double sweep;           /**< arcs: the signed angle swept, radians (> 0: counter-clockwise) */
+  double rms, max;        /**< distances of its samples to its model (free: 0, 0) */
+  double turn;            /**< corner joins: the angle between the two directions, radians */
+  double evidence;        /**< corner joins: how much worse one smooth curve (a circle, or
+                               a cubic over the chord) explains both pieces' samples than
+                               the two models meeting at the corner, in units of
+                               (tol/tol_sigma)^2, i.e. sigma^2 on noisy data */
+} bsfit_piece;
+
+/** Options of bsfit_segment. Zero-initialise, then set what you need. */
+typedef struct bsfit_segment_opts {
+  int closed;        /**< the section is closed */
+  double sigma;      /**< noise level (>= 0); 0: the data is taken as exact */
+  double tol_sigma;  /**< a sample fits a model within tol_sigma * sigma; 0: 4 */
+  double exact;      /**< relative tolerance of exact data (of the size); 0: 1e-10 */
+  size_t min_line;   /**< fewest samples of a line; 0: 3 */
+  size_t min_arc;    /**< fewest samples of an arc; 0: 4 */
+} bsfit_segment_opts;
+
+/** Splits an ordered 2D section into lines, arcs and free-form runs.
+**
+** Each sample belongs to one piece (or, at a corner or tangent point that was sampled,
+** to the two pieces meeting there). A run of samples is a line (an arc) when every one
+** of them lies within tol = max(tol_sigma * sigma, exact * size) of its total
+** least-squares line (geometric circle fit), size the bounding-box diagonal. The cover
+** of the section is the one of least cost by dynamic programming: 2 per line (its
+** parameters), 3 per arc, 1 per free sample plus 1 per free run, so a line beats an arc
+** and both beat free samples. Consecutive primitives meet where their models meet:
+** tangentially (G1) when their directions there differ by less than the noise allows,
+** else at a corner; when the models do not meet between the two pieces' last and first
+** samples, a free run bridges them. A free run meets a primitive at that primitive's
+** extreme sample, projected on its model, with its tangent (G1). A line of 2 samples
+** between two lines whose corners it confirms is kept as a line.
+**
+** On noisy data a caller keeps a corner only when its `evidence` is large (the smooth
+** alternative misses by many sigma^2): two arcs of an ellipse meet at a small angle
+** that a cubic explains as well.
+**
+** Cost: O(m r), r the longest run. Limits: 2D only; free-form runs are not split at
+** corners of their own.
+** @param[out] pieces at most cap pieces, in section order (for closed sections the
+**                    first starts where a primitive starts, when there is one).
+** @param[out] count  the number of pieces (may exceed cap: retry larger; m is enough).
+** @return BSFIT_OK, BSFIT_EDIM (dim != 2), BSFIT_ETOOFEW (m < 3), BSFIT_ENONFINITE,
+**         BSFIT_EINVAL (options), BSFIT_EDEGENERATE (all points coincide),
+**         BSFIT_ENOMEM, BSFIT_EINTR. */
+BSFIT_API bsfit_err bsfit_segment(const double *pts, size_t m, int dim,
+                                  const bsfit_segment_opts *opts, bsfit_piece *pieces,
+                                  size_t cap, size_t *count, const bsfit_allocator *a,
+                                  bsfit_status *st);
+
+/** Estimates the noise of a section of lines and arcs from the models themselves.
+** Segmented at a level below its noise, a section's runs stop short, and the pooled
+** residual of its lines and arcs (sum of squares over degrees of freedom) exceeds the
+** level; at the noise the models are right and the two match. The levels tried rise by
+** 10^(1/2) from a sixteenth of a first guess (how far samples lie off their neighbours'
+** chord: the lower quartile, over its value for pure noise, 0.3186 sigma); the first
+** whose pooled residual is at most 1.2 times the level gives the estimate. Sparse
+** samples of a contour that bends between them make window-based estimates
+** (bsfit_noise_sigma) many times too large; this one is not, where lines and arcs hold
+** the samples. Cost: up to ~30 segmentations (typically 10-20).
+** @param[in]  max_sigma the highest level tried (<= 0: 5% of the size): a caller that
+**                   will not believe a larger one saves the costly high levels, where
+**                   runs grow long.
+** @param[out] sigma the estimate; 0 when every line and arc is exact to 1e-10 of the
+**                   size, or when no level up to max_sigma explains the section (then
+**                   lines and arcs do not hold it).
+** @return BSFIT_OK or the codes of bsfit_segment. */
+BSFIT_API bsfit_err bsfit_segment_sigma(const double *pts, size_t m, int dim, int closed,
+                                        double max_sigma, double *sigma,
+                                        const bsfit_allocator *a, bsfit_status *st);
+
+/** A straight segment from a to b as a degree-3 curve on [0, 1] with four collinear,
+** evenly spaced control points (its speed is constant). dim 1..4. */
+BSFIT_API bsfit_err bsfit_curve_line(const double *a, const double *b, int dim, bsfit_curve *c,
+                                     const bsfit_allocator *al, bsfit_status *st);
+
+/** A circular arc (2D) as an exact degree-3 rational curve on [0, 1]: the sweep is cut
+** into equal parts of at most 90 degrees, each the rational quadratic arc (end weights
+** 1, middle weight cos of half its angle) raised to degree 3; the parts meet at knots
+** of multiplicity 3, all weights positive.
+** @param[in] centre, radius (> 0), start angle a0 (radians), signed sweep (|sweep| in
+**            (0, 2 pi]). */
+BSFIT_API bsfit_err bsfit_curve_arc(const double *centre, double radius, double a0,
+                                    double sweep, bsfit_curve *c, const bsfit_allocator *al,
+                                    bsfit_status *st);
+
+/** Joins open curves end to end into one degree-3 curve (C0 knots of multiplicity 3 at
+** the joins): part i takes the parameter range [s_i, s_{i+1}] of [0, 1] in proportion
+** to lengths[i] (> 0). The parts must be open, clamped, of degree <= 3 (lower degrees are
+** raised), of one dimension, each one's start within 1e-9 of the size of the previous
+** one's end (the start is then made equal to it). The result is rational when any part
+** is, polynomial otherwise; a part's end weights must then be 1 (or it is polynomial).
+** @return BSFIT_OK, BSFIT_EINVAL (no parts, a part periodic, not clamped, ends apart,
+**         a length <= 0, end weights not 1), BSFIT_EDIM, BSFIT_EDEGREE, BSFIT_ENOMEM. */
+BSFIT_API bsfit_err bsfit_curve_join(const bsfit_curve *const *parts, size_t n,
+                                     const double *lengths, bsfit_curve *out,
+                                     const bsfit_allocator *al, bsfit_status *st);
+
+/** Whether the closed or open polyline of k samples of a 2D curve crosses itself, by a
+** sweep over its edges sorted by x (O(k log k) plus the pairs whose x-ranges overlap).
+** Edges that share a sample do not count.
+** @param[out] crossings number of crossing edge pairs found (capped at 1000).
+** @param[out] where     when not NULL and crossings > 0: a parameter of the curve at
+**                       the first crossing found.
+** @return BSFIT_OK, BSFIT_EDIM, BSFIT_EINVAL (k < 3), BSFIT_ENOMEM, BSFIT_EINTR. */
+BSFIT_API bsfit_err bsfit_curve_self_intersections(const bsfit_curve *c, size_t k,
+                                                   size_t *crossings, double *where,
+                                                   const bsfit_allocator *al,
+                                                   bsfit_status *st);
+
+#endif /* BSFIT_FEATURES_H */

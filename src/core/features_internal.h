@@ -1,0 +1,62 @@
+/*
+** features_internal.h
+** The side models of the feature code (side_models.c): lines and circles fitted to runs
+** of an ordered 2D section, their distances and where two of them meet. Shared by
+** segment.c; not part of the public API.
+*/
+#ifndef BSFIT_FEATURES_INTERNAL_H
+#define BSFIT_FEATURES_INTERNAL_H
+
+#include "internal.h"
+
+/* a run of samples of a section: first and n samples on, modulo m (closed wraps) */
+typedef struct bsfit__run {
+  const double *pts; /* m 2D points */
+  size_t m, first, n;
+} bsfit__run;
+
+/* the line through p with unit direction d, oriented along the run */
+typedef struct bsfit__line {
+  double p[2], d[2];
+} bsfit__line;
+
+/* the circle of centre c and radius r */
+typedef struct bsfit__circle {
+  double c[2], r;
+} bsfit__circle;
+
+/* sample k of the run (k < n) */
+static inline const double *bsfit__run_at(const bsfit__run *r, size_t k) {
+  return r->pts + 2 * ((r->first + k) % r->m);
+}
+
+/* Total least-squares line of the run (n >= 2); 0 when its points coincide. */
+int bsfit__fit_line(const bsfit__run *r, bsfit__line *L);
+
+/* Geometric least-squares circle of the run (n >= 3), by Gauss-Newton from `init` (a
+** nearby run's circle: it then settles in a step or two) or, when NULL, from the circle
+** through its first, middle and last samples; 0 when they are collinear or it does not
+** settle. */
+int bsfit__fit_circle(const bsfit__run *r, const bsfit__circle *init, bsfit__circle *C);
+
+double bsfit__line_dist(const bsfit__line *L, const double *x);
+double bsfit__circle_dist(const bsfit__circle *C, const double *x);
+
+/* Largest distance and RMS of the run's samples to a line (circle). */
+double bsfit__line_max(const bsfit__line *L, const bsfit__run *r, double *rms);
+double bsfit__circle_max(const bsfit__circle *C, const bsfit__run *r, double *rms);
+
+/* Meeting points of a line and a circle, or two circles: up to 2 written to x[2][2];
+** returns their number (a tangent pair, within rounding, gives 1). */
+int bsfit__meet_line_circle(const bsfit__line *L, const bsfit__circle *C, double x[2][2]);
+int bsfit__meet_circles(const bsfit__circle *A, const bsfit__circle *B, double x[2][2]);
+/* Meeting point of two lines; 0 when parallel. */
+int bsfit__meet_lines(const bsfit__line *A, const bsfit__line *B, double x[2]);
+
+/* segment.c: the bounding-box diagonal of m 2D points, and the argument checks of
+** bsfit_segment (shared with segment_sigma.c) */
+double bsfit__segment_size(const double *pts, size_t m);
+bsfit_err bsfit__segment_check(const double *pts, size_t m, int dim, const bsfit_segment_opts *o,
+                               bsfit_status *st);
+
+#endif

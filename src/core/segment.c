@@ -1,0 +1,863 @@
+/*
+** segment.c
+** Segmentation of an ordered 2D section into straight lines, circular arcs and
+** free-form runs (bsfit_features.h): the maximal runs each model explains, the cover
+** of least cost (dynamic programming), and where consecutive pieces meet.
+*/
+#include "features_internal.h"
+
+#include <math.h>
+#include <string.h>
+
+#define PI 3.14159265358979323846
+
+#define LINE BSFIT_PIECE_LINE
+#define ARC BSFIT_PIECE_ARC
+#define FREE BSFIT_PIECE_FREE
+
+/* what the segmentation works on */
+typedef struct section {
+  const double *pts;
+  size_t m;
+  int closed;
+  double tol;  /* a sample fits a model within tol */
+  double unit; /* sigma: tol / tol_sigma (evidence is counted in unit^2) */
+  size_t min_len[2];
+  size_t *gaps; /* gaps[i]: how many of the steps j -> j+1, j < i (unwrapped, i <= 2m),
+                   are longer than tol: a model needs that many distinct samples */
+  const bsfit_allocator *a;
+} section;
+
+/* distinct samples (steps longer than tol, plus one) among n from first */
+static size_t distinct(const struct section *s, size_t first, size_t n) {
+  return s->gaps[first + n - 1] - s->gaps[first] + 1;
+}
+
+/* a model of either kind */
+typedef struct model {
+  int kind;
+  bsfit__line line;
+  bsfit__circle circle;
+  double orient; /* arcs: +1 counter-clockwise along the samples, -1 clockwise */
+} model;
+
+static const double *sample(const section *s, size_t i) { return s->pts + 2 * (i % s->m); }
+
+static bsfit__run run_of(const section *s, size_t first, size_t n) {
+  bsfit__run r;
+  r.pts = s->pts;
+  r.m = s->m;
+  r.first = first % s->m;
+  r.n = n;
+  return r;
+}
+
+/* fits a model of `kind` to n samples from `first`; its largest distance (HUGE_VAL
+** when it cannot be fitted) */
+static double fit_model_from(const section *s, int kind, size_t first, size_t n, const model *warm,
+                             model *md, double *rms) {
+  bsfit__run r = run_of(s, first, n);
+  double turn = 0;
+  size_t k;
+  md->kind = kind;
+  if (kind == LINE) {
+    if (!bsfit__fit_line(&r, &md->line)) return HUGE_VAL;
+    return bsfit__line_max(&md->line, &r, rms);
+  }
+  if (!bsfit__fit_circle(&r, warm && warm->kind == ARC ? &warm->circle : NULL, &md->circle))
+    return HUGE_VAL;
+  /* the direction the samples go round the centre */
+  for (k = 0; k + 1 < n; k++) {
+    const double *p = bsfit__run_at(&r, k), *q = bsfit__run_at(&r, k + 1);
+    double ax = p[0] - md->circle.c[0], ay = p[1] - md->circle.c[1];
+    double bx = q[0] - md->circle.c[0], by = q[1] - md->circle.c[1];
+    turn += atan2(ax * by - ay * bx, ax * bx + ay * by);
+  }
+  md->orient = turn >= 0 ? 1.0 : -1.0;
+  return bsfit__circle_max(&md->circle, &r, rms);
+}
+
+static double fit_model(const section *s, int kind, size_t first, size_t n, model *md,
+                        double *rms) {
+  return fit_model_from(s, kind, first, n, NULL, md, rms);
+}
+
+static double model_dist(const model *md, const double *x) {
+  return md->kind == LINE ? bsfit__line_dist(&md->line, x) : bsfit__circle_dist(&md->circle, x);
+}
+
+/* {====================================================================
+** Maximal runs
+** ===================================================================== */
+
+/* len[i] = the most samples from i that one model of `kind` explains within tol (0
+** when fewer than its minimum). Two pointers: a run from i+1 is at least the run from
+** i less one sample, so each start resumes where the previous stopped; a sample that
+** the current model misses triggers one refit before the run ends. O(m r). */
+/* A quick no for a seed of minl samples: the line through its ends (the circle through
+** its ends and middle) misses one of them by far more than any least-squares model
+** could spread (3 tol for a line, 8 for a circle). */
+static int seed_misses(const section *s, int kind, size_t i, size_t n) {
+  const double *a = sample(s, i), *b = sample(s, i + n - 1);
+  size_t k;
+  if (kind == LINE) {
+    double dx = b[0] - a[0], dy = b[1] - a[1], l = hypot(dx, dy);
+    if (!(l > 0)) return 0;
+    for (k = 1; k + 1 < n; k++) {
+      const double *q = sample(s, i + k);
+      if (fabs((q[0] - a[0]) * dy - (q[1] - a[1]) * dx) / l > 3 * s->tol) return 1;
+    }
+  } else {
+    /* the circle through first, middle and last: a 3-sample run of them */
+    const double *mid = sample(s, i + n / 2);
+    double tri[6] = {a[0], a[1], mid[0], mid[1], b[0], b[1]};
+    bsfit__run t = {tri, 3, 0, 3};
+    bsfit__circle C;
+    if (!bsfit__fit_circle(&t, NULL, &C)) return 0;
+    for (k = 1; k + 1 < n; k++)
+      if (bsfit__circle_dist(&C, sample(s, i + k)) > 8 * s->tol) return 1;
+  }
+  return 0;
+}
+
+/* len[i] = the most samples from i that one model of `kind` explains within tol (0
+** when fewer than its minimum). Two pointers: a run from i+1 is at least the run from
+** i less one sample, so each start resumes where the previous stopped, its model
+** warm-started from the previous one; a sample the current model misses triggers a
+** refit when the run has grown by an eighth since the last (else it ends there). */
+static bsfit_err maximal_runs(const section *s, int kind, size_t *len) {
+  size_t i, prev = 0, minl = s->min_len[kind];
+  model md, last;
+  int have_last = 0;
+  for (i = 0; i < s->m; i++) {
+    size_t limit = s->closed ? s->m : s->m - i;
+    size_t n = prev > minl ? prev - 1 : minl, good, fitted;
+    if ((i & 255) == 0 && bsfit__interrupted(s->a)) return BSFIT_EINTR;
+    len[i] = 0;
+    if (n > limit || minl > limit) {
+      prev = 0;
+      continue;
+    }
+    if (n == minl && seed_misses(s, kind, i, n)) {
+      prev = 0;
+      have_last = 0;
+      continue;
+    }
+    if (fit_model_from(s, kind, i, n, have_last ? &last : NULL, &md, NULL) > s->tol) {
+      n = minl;
+      if (seed_misses(s, kind, i, n) || fit_model(s, kind, i, n, &md, NULL) > s->tol) {
+        prev = 0, have_last = 0;
+        continue;
+      }
+    }
+    good = fitted = n;
+    while (n < limit) {
+      model next;
+      if (model_dist(&md, sample(s, i + n)) <= s->tol) {
+        n++;
+        continue;
+      }
+      if (8 * (n + 1 - fitted) < n + 1) break;
+      if (fit_model_from(s, kind, i, n + 1, &md, &next, NULL) > s->tol) break;
+      md = next;
+      good = fitted = ++n;
+    }
+    /* the last samples were judged by an older model: confirm the whole run, or fall
+    ** back to the last run a full fit confirmed */
+    if (n > good && fit_model_from(s, kind, i, n, &md, &md, NULL) > s->tol) {
+      n = good;
+      fit_model_from(s, kind, i, n, &md, &md, NULL);
+    }
+    last = md, have_last = 1;
+    len[i] = distinct(s, i, n) >= minl ? n : 0;
+    prev = n;
+  }
+  return BSFIT_OK;
+}
+
+/* }==================================================================== */
+
+/* {====================================================================
+** The cover of least cost
+** ===================================================================== */
+
+/* DP state: the cheapest cover of offsets [0, j] whose last piece ends at j */
+typedef struct cell {
+  double cost;
+  size_t start; /* offset of the last piece's first sample */
+  int kind;
+  int shared;    /* the piece before ends at `start` too (a sampled corner) */
+  int prev_free; /* the piece before is free */
+} cell;
+
+/* Costs, in parameters: a line has 2, an arc 3; a free sample costs 1.5 (the control
+** point or so that follows it), a free run 1 more (its ends), so that three samples on a
+** line (2) beat three free ones (5.5) and a side of lines between fillets too sparse
+** to be arcs is still cut into lines. */
+static const double COST[3] = {2.0, 3.0, 0.0};
+#define FREE_SAMPLE 1.5
+#define FREE_RUN 1.0
+
+/* best primitive piece ending at offset j (into *c); prim/fr are the two DP arrays */
+static void best_primitive(const section *s, size_t origin, size_t j, size_t *const len[2],
+                           const size_t rmax[2], const cell *prim, const cell *fr, cell *c) {
+  int kind;
+  c->cost = HUGE_VAL;
+  for (kind = LINE; kind <= ARC; kind++) {
+    size_t n, minl = s->min_len[kind];
+    for (n = minl; n <= j + 1 && n <= rmax[kind]; n++) {
+      size_t a = j + 1 - n;
+      double before = 0;
+      int shared = 0, pf = 0;
+      if (len[kind][(origin + a) % s->m] < n || distinct(s, (origin + a) % s->m, n) < minl)
+        continue;
+      if (a > 0) {
+        before = prim[a - 1].cost;
+        if (fr[a - 1].cost < before) before = fr[a - 1].cost, pf = 1;
+        if (prim[a].cost < before) before = prim[a].cost, shared = 1, pf = 0;
+      }
+      if (before + COST[kind] < c->cost) {
+        c->cost = before + COST[kind];
+        c->start = a;
+        c->kind = kind;
+        c->shared = shared;
+        c->prev_free = pf;
+      }
+    }
+  }
+}
+
+/* The pieces (first/last sample, kind) of the cheapest cover of the M samples from
+** origin, written backwards into out; returns their number. */
+static size_t cheapest_cover(const section *s, size_t origin, size_t *const len[2],
+                             const size_t rmax[2], cell *prim, cell *fr, bsfit_piece *out) {
+  size_t M = s->m, j, np = 0;
+  int in_free;
+  for (j = 0; j < M; j++) {
+    double a = j > 0 ? fr[j - 1].cost + FREE_SAMPLE : HUGE_VAL;
+    double b = (j > 0 ? prim[j - 1].cost : 0) + FREE_SAMPLE + FREE_RUN;
+    best_primitive(s, origin, j, len, rmax, prim, fr, &prim[j]);
+    fr[j].kind = FREE;
+    fr[j].shared = 0;
+    if (a <= b)
+      fr[j].cost = a, fr[j].start = fr[j - 1].start, fr[j].prev_free = fr[j - 1].prev_free;
+    else
+      fr[j].cost = b, fr[j].start = j, fr[j].prev_free = 0;
+  }
+  /* trace back from the end */
+  j = M - 1;
+  in_free = fr[j].cost < prim[j].cost;
+  for (;;) {
+    const cell *c = in_free ? &fr[j] : &prim[j];
+    bsfit_piece *p = &out[np++];
+    memset(p, 0, sizeof *p);
+    p->kind = (bsfit_piece_kind)c->kind;
+    p->first = (origin + c->start) % s->m;
+    p->count = j - c->start + 1;
+    if (c->start == 0) break;
+    if (c->shared)
+      j = c->start;
+    else
+      j = c->start - 1;
+    in_free = c->prev_free;
+  }
+  return np;
+}
+
+/* }==================================================================== */
+
+/* {====================================================================
+** Where pieces meet
+** ===================================================================== */
+
+static size_t piece_count(const section *s, const bsfit_piece *p) {
+  (void)s;
+  return p->count;
+}
+
+static void refit(const section *s, bsfit_piece *p, model *md) {
+  double rms = 0;
+  p->max = fit_model(s, p->kind, p->first, piece_count(s, p), md, &rms);
+  p->rms = rms;
+  if (p->kind == ARC) {
+    memcpy(p->centre, md->circle.c, sizeof p->centre);
+    p->radius = md->circle.r;
+  }
+}
+
+/* the model's foot point of x and its unit tangent there (along the traversal) */
+static void foot(const model *md, const double *x, double *f, double *t) {
+  if (md->kind == LINE) {
+    double u = (x[0] - md->line.p[0]) * md->line.d[0] + (x[1] - md->line.p[1]) * md->line.d[1];
+    f[0] = md->line.p[0] + u * md->line.d[0];
+    f[1] = md->line.p[1] + u * md->line.d[1];
+    t[0] = md->line.d[0];
+    t[1] = md->line.d[1];
+  } else {
+    double dx = x[0] - md->circle.c[0], dy = x[1] - md->circle.c[1], d = hypot(dx, dy);
+    f[0] = md->circle.c[0] + md->circle.r * dx / d;
+    f[1] = md->circle.c[1] + md->circle.r * dy / d;
+    t[0] = -md->orient * dy / d;
+    t[1] = md->orient * dx / d;
+  }
+}
+
+/* the largest spacing of a piece's samples */
+static double max_spacing(const section *s, const bsfit_piece *p) {
+  size_t k, n = piece_count(s, p);
+  double h = 0;
+  for (k = 0; k + 1 < n; k++) {
+    const double *a = sample(s, p->first + k), *b = sample(s, p->first + k + 1);
+    double d = hypot(b[0] - a[0], b[1] - a[1]);
+    if (d > h) h = d;
+  }
+  return h;
+}
+
+/* Do the models touch? A line and a circle when the centre is r from the line, two
+** circles when their centres are r1 + r2 or |r1 - r2| apart, within the tolerance
+** (a tangent join meets at the touching point, which the intersection formulas find
+** only to the square root of the rounding). Writes the touching point. */
+static int touching(const section *s, const model *ma, const model *mb, double *x) {
+  double t[2];
+  if (ma->kind == LINE && mb->kind == LINE) return 0;
+  if (ma->kind == LINE || mb->kind == LINE) {
+    const model *ml = ma->kind == LINE ? ma : mb, *mc = ma->kind == LINE ? mb : ma;
+    foot(ml, mc->circle.c, x, t);
+    return fabs(hypot(x[0] - mc->circle.c[0], x[1] - mc->circle.c[1]) - mc->circle.r) <= 2 * s->tol;
+  } else {
+    const bsfit__circle *A = &ma->circle, *B = &mb->circle;
+    double d = hypot(B->c[0] - A->c[0], B->c[1] - A->c[1]), u;
+    if (d <= s->tol) return 0;
+    if (fabs(d - (A->r + B->r)) <= 2 * s->tol)
+      u = A->r / d; /* outside each other */
+    else if (fabs(d - fabs(A->r - B->r)) <= 2 * s->tol)
+      u = A->r > B->r ? A->r / d : -A->r / d;
+    else
+      return 0;
+    x[0] = A->c[0] + u * (B->c[0] - A->c[0]);
+    x[1] = A->c[1] + u * (B->c[1] - A->c[1]);
+    return 1;
+  }
+}
+
+/* Is x where A (last sample qa) may meet B (first sample qb)? Beyond qa along A, before
+** qb along B (by `slack` at most), and within reach of both (as far as the pieces' own
+** spacing). */
+static int in_gap(const section *s, const bsfit_piece *A, const model *ma, const bsfit_piece *B,
+                  const model *mb, const double *x, double slack) {
+  const double *qa = sample(s, A->first + A->count - 1), *qb = sample(s, B->first);
+  double ta[2], tb[2], f[2], chord = hypot(qb[0] - qa[0], qb[1] - qa[1]);
+  double reach_a = 1.5 * max_spacing(s, A) + 1.5 * chord + s->tol;
+  double reach_b = 1.5 * max_spacing(s, B) + 1.5 * chord + s->tol;
+  foot(ma, qa, f, ta);
+  foot(mb, qb, f, tb);
+  if (hypot(x[0] - qa[0], x[1] - qa[1]) > reach_a || hypot(x[0] - qb[0], x[1] - qb[1]) > reach_b)
+    return 0;
+  if ((x[0] - qa[0]) * ta[0] + (x[1] - qa[1]) * ta[1] < -slack) return 0;
+  return (qb[0] - x[0]) * tb[0] + (qb[1] - x[1]) * tb[1] >= -slack;
+}
+
+/* Where A and B meet: their touching point (a tangent join), or the meeting point of
+** their models that lies in the gap between them (nearest to both samples), a corner
+** unless their directions there agree to what the tolerance lets them vary over the
+** shorter piece. Returns 0 (no such point), BSFIT_JOIN_CORNER or BSFIT_JOIN_TANGENT. */
+static int meet(const section *s, const bsfit_piece *A, const model *ma, const bsfit_piece *B,
+                const model *mb, double *x) {
+  const double *qa = sample(s, A->first + A->count - 1), *qb = sample(s, B->first);
+  double cand[2][2], best = HUGE_VAL, ta[2], tb[2], f[2], lim, angle;
+  int nc = 0, k, found = 0;
+  if (touching(s, ma, mb, x)) {
+    /* models that touch stay within tol of each other for sqrt(2 r tol) on either side
+    ** of the touching point: a sample that far past it fits either piece */
+    double r = ma->kind == ARC ? ma->circle.r : mb->circle.r;
+    if (ma->kind == ARC && mb->kind == ARC && mb->circle.r < r) r = mb->circle.r;
+    return in_gap(s, A, ma, B, mb, x, fmax(2 * s->tol, sqrt(2 * r * s->tol))) ? BSFIT_JOIN_TANGENT
+                                                                              : 0;
+  }
+  if (ma->kind == LINE && mb->kind == LINE)
+    nc = bsfit__meet_lines(&ma->line, &mb->line, cand[0]);
+  else if (ma->kind == LINE)
+    nc = bsfit__meet_line_circle(&ma->line, &mb->circle, cand);
+  else if (mb->kind == LINE)
+    nc = bsfit__meet_line_circle(&mb->line, &ma->circle, cand);
+  else
+    nc = bsfit__meet_circles(&ma->circle, &mb->circle, cand);
+  for (k = 0; k < nc; k++) {
+    double *c = cand[k], d = hypot(c[0] - qa[0], c[1] - qa[1]) + hypot(c[0] - qb[0], c[1] - qb[1]);
+    if (in_gap(s, A, ma, B, mb, c, 2 * s->tol) && d < best)
+      best = d, x[0] = c[0], x[1] = c[1], found = 1;
+  }
+  if (!found) return 0;
+  foot(ma, x, f, ta);
+  foot(mb, x, f, tb);
+  angle = atan2(fabs(ta[0] * tb[1] - ta[1] * tb[0]), ta[0] * tb[0] + ta[1] * tb[1]);
+  lim = 4.0 * s->tol / fmax(1.5 * fmin(max_spacing(s, A), max_spacing(s, B)), 1e-300);
+  return angle <= fmin(lim, 0.1) ? BSFIT_JOIN_TANGENT : BSFIT_JOIN_CORNER;
+}
+
+/* }==================================================================== */
+
+/* {====================================================================
+** Evidence for corners
+** ===================================================================== */
+
+/* residual sum of squares of a cubic y(x) over the run, in the frame of its chord (x
+** along it, scaled to [-1, 1]); HUGE_VAL when it cannot be fitted */
+static double cubic_rss(const section *s, size_t first, size_t n) {
+  const double *a = sample(s, first), *b = sample(s, first + n - 1);
+  double ux = b[0] - a[0], uy = b[1] - a[1], len = hypot(ux, uy),
+         A[BSFIT__SMALL][BSFIT__SMALL] = {{0}};
+  double g[4] = {0, 0, 0, 0}, rss = 0;
+  size_t k;
+  int i, j;
+  if (n < 6 || !(len > 0)) return HUGE_VAL;
+  ux /= len, uy /= len;
+  for (k = 0; k < n; k++) {
+    const double *q = sample(s, first + k);
+    double x = ((q[0] - a[0]) * ux + (q[1] - a[1]) * uy) / len * 2.0 - 1.0;
+    double y = -(q[0] - a[0]) * uy + (q[1] - a[1]) * ux, pw[4] = {1, x, x * x, x * x * x};
+    for (i = 0; i < 4; i++) {
+      g[i] += pw[i] * y;
+      for (j = 0; j < 4; j++) A[i][j] += pw[i] * pw[j];
+    }
+  }
+  if (!bsfit__small_cholesky(4, A)) return HUGE_VAL;
+  bsfit__small_chol_solve(4, A, g);
+  for (k = 0; k < n; k++) {
+    const double *q = sample(s, first + k);
+    double x = ((q[0] - a[0]) * ux + (q[1] - a[1]) * uy) / len * 2.0 - 1.0;
+    double y = -(q[0] - a[0]) * uy + (q[1] - a[1]) * ux;
+    double e = y - (g[0] + x * (g[1] + x * (g[2] + x * g[3])));
+    rss += e * e;
+  }
+  return rss;
+}
+
+/* How much worse one smooth curve explains the samples of A and B next to their corner
+** (up to EVIDENCE_REACH on each side: a smooth contour is smooth locally, while two
+** long pieces of it together may turn too far for one cubic) than their two models, in
+** units of sigma^2 = (tol / tol_sigma)^2. */
+#define EVIDENCE_REACH 8
+static double join_evidence(const section *s, const bsfit_piece *A, const model *ma,
+                            const bsfit_piece *B, const model *mb, double sigma) {
+  size_t na = A->count < EVIDENCE_REACH ? A->count : EVIDENCE_REACH;
+  size_t nb = B->count < EVIDENCE_REACH ? B->count : EVIDENCE_REACH, k, first, n;
+  int shared = B->first == (A->first + A->count - 1) % s->m;
+  double two = 0, one, rms;
+  model md;
+  first = A->first + A->count - na;
+  for (k = 0; k < na; k++) two += pow(model_dist(ma, sample(s, first + k)), 2);
+  for (k = 0; k < nb; k++) two += pow(model_dist(mb, sample(s, B->first + k)), 2);
+  if (shared)
+    two -= 0.5 * (pow(model_dist(ma, sample(s, B->first)), 2) +
+                  pow(model_dist(mb, sample(s, B->first)), 2));
+  n = na + nb - (size_t)shared;
+  if (n > s->m) n = s->m;
+  one = cubic_rss(s, first, n);
+  if (fit_model(s, ARC, first, n, &md, &rms) < HUGE_VAL && rms * rms * (double)n < one)
+    one = rms * rms * (double)n;
+  return (one - two) / (sigma * sigma);
+}
+
+/* }==================================================================== */
+
+/* {====================================================================
+** The pieces
+** ===================================================================== */
+
+static void set_line_ends(bsfit_piece *p, const model *md) {
+  memcpy(p->t_start, md->line.d, sizeof p->t_start);
+  memcpy(p->t_end, md->line.d, sizeof p->t_end);
+}
+
+/* arcs: the sweep from start to end in the samples' direction */
+static void set_arc_sweep(bsfit_piece *p, const model *md, int whole) {
+  double a0 = atan2(p->start[1] - md->circle.c[1], p->start[0] - md->circle.c[0]);
+  double a1 = atan2(p->end[1] - md->circle.c[1], p->end[0] - md->circle.c[0]);
+  double sw = a1 - a0;
+  if (whole) sw = 0;
+  if (md->orient > 0) {
+    while (sw <= 0) sw += 2 * PI;
+  } else {
+    while (sw >= 0) sw -= 2 * PI;
+  }
+  p->sweep = sw;
+}
+
+/* A meets B (both in the list, B after A): sets A's end, B's start, tangents and B's
+** join. Returns 0 when two primitives' models do not meet between them. */
+static int join_pieces(const section *s, bsfit_piece *A, const model *ma, bsfit_piece *B,
+                       const model *mb) {
+  double x[2], f[2], t[2];
+  int k;
+  if (A->kind != FREE && B->kind != FREE) {
+    k = meet(s, A, ma, B, mb, x);
+    if (!k) return 0;
+    memcpy(A->end, x, sizeof x);
+    memcpy(B->start, x, sizeof x);
+    foot(ma, x, f, A->t_end);
+    foot(mb, x, f, B->t_start);
+    B->join = (bsfit_join_kind)k;
+    return 1;
+  }
+  /* a free run meets a primitive at the primitive's extreme sample, tangentially */
+  if (A->kind != FREE)
+    foot(ma, sample(s, A->first + A->count - 1), f, t);
+  else
+    foot(mb, sample(s, B->first), f, t);
+  memcpy(A->end, f, sizeof f);
+  memcpy(B->start, f, sizeof f);
+  memcpy(A->t_end, t, sizeof t);
+  memcpy(B->t_start, t, sizeof t);
+  B->join = BSFIT_JOIN_TANGENT;
+  return 1;
+}
+
+/* A free piece of 2 (3) samples between two primitives becomes the line (circle)
+** through them when both its ends then meet the neighbours: a short side, or an arc
+** sampled too sparsely to be told from a curve, that both neighbours confirm. */
+static void short_runs(const section *s, bsfit_piece *p, model *md, size_t np) {
+  size_t i;
+  for (i = 0; i < np; i++) {
+    size_t ia = (i + np - 1) % np, ib = (i + 1) % np;
+    bsfit_piece trial = p[i];
+    model mt;
+    double x[2];
+    if (p[i].kind != FREE || (p[i].count != 2 && p[i].count != 3) || np < 2) continue;
+    if (!s->closed && (i == 0 || i + 1 == np)) continue;
+    if (p[ia].kind == FREE || p[ib].kind == FREE) continue;
+    trial.kind = p[i].count == 2 ? LINE : ARC;
+    if (fit_model(s, trial.kind, trial.first, trial.count, &mt, NULL) == HUGE_VAL) continue;
+    if (!meet(s, &p[ia], &md[ia], &trial, &mt, x) || !meet(s, &trial, &mt, &p[ib], &md[ib], x))
+      continue;
+    p[i].kind = trial.kind;
+    refit(s, &p[i], &md[i]);
+  }
+}
+
+/* The ends of every piece; a free bridge (no samples) is inserted where two primitives
+** do not meet. p has room for 2 np pieces; returns the new count. */
+static size_t place_ends(const section *s, bsfit_piece *p, model *md, size_t np) {
+  size_t i, n = np;
+  for (i = 0; i < n; i++) {
+    size_t ib = i + 1;
+    if (ib == n) {
+      if (!s->closed) break;
+      ib = 0;
+    }
+    if (join_pieces(s, &p[i], &md[i], &p[ib], &md[ib])) continue;
+    /* bridge: from A's last sample (on A) to B's first (on B) */
+    memmove(&p[i + 2], &p[i + 1], (n - i - 1) * sizeof *p);
+    memmove(&md[i + 2], &md[i + 1], (n - i - 1) * sizeof *md);
+    memset(&p[i + 1], 0, sizeof *p);
+    p[i + 1].kind = FREE;
+    p[i + 1].first = (p[ib == 0 ? 0 : i + 2].first);
+    p[i + 1].count = 0;
+    md[i + 1].kind = FREE;
+    n++;
+    join_pieces(s, &p[i], &md[i], &p[i + 1], &md[i + 1]);
+    join_pieces(s, &p[i + 1], &md[i + 1], &p[(i + 2) % n], &md[(i + 2) % n]);
+    i++;
+  }
+  return n;
+}
+
+/* the first and last pieces of an open section end at its first and last samples */
+static void open_ends(const section *s, bsfit_piece *p, const model *md, size_t n) {
+  double t[2];
+  bsfit_piece *z = &p[n - 1];
+  p[0].join = BSFIT_JOIN_END;
+  if (p[0].kind == FREE)
+    memcpy(p[0].start, sample(s, 0), sizeof p[0].start);
+  else
+    foot(&md[0], sample(s, 0), p[0].start, p[0].t_start);
+  if (z->kind == FREE)
+    memcpy(z->end, sample(s, s->m - 1), sizeof z->end);
+  else
+    foot(&md[n - 1], sample(s, s->m - 1), z->end, t), memcpy(z->t_end, t, sizeof t);
+}
+
+/* }==================================================================== */
+
+/* the bounding-box diagonal */
+double bsfit__segment_size(const double *pts, size_t m) {
+  double lo[2] = {pts[0], pts[1]}, hi[2] = {pts[0], pts[1]};
+  size_t i;
+  int d;
+  for (i = 1; i < m; i++)
+    for (d = 0; d < 2; d++) {
+      if (pts[2 * i + d] < lo[d]) lo[d] = pts[2 * i + d];
+      if (pts[2 * i + d] > hi[d]) hi[d] = pts[2 * i + d];
+    }
+  return hypot(hi[0] - lo[0], hi[1] - lo[1]);
+}
+
+bsfit_err bsfit__segment_check(const double *pts, size_t m, int dim, const bsfit_segment_opts *o,
+                               bsfit_status *st) {
+  if (dim != 2) return bsfit__fail(st, BSFIT_EDIM, "segmentation needs 2D points, got dim %d", dim);
+  if (pts == NULL || m < 3)
+    return bsfit__fail(st, BSFIT_ETOOFEW, "segmentation needs at least 3 points, got %zu", m);
+  if (!bsfit__all_finite(pts, 2 * m))
+    return bsfit__fail(st, BSFIT_ENONFINITE, "points contain NaN or Inf");
+  if (!(o->sigma >= 0) || !isfinite(o->sigma) || !(o->tol_sigma >= 0) || !isfinite(o->tol_sigma) ||
+      !(o->exact >= 0) || !(o->exact < 1) || o->min_line == 1 || o->min_arc == 1 || o->min_arc == 2)
+    return bsfit__fail(st, BSFIT_EINVAL,
+                       "segmentation options out of range (sigma %g, tol_sigma %g, "
+                       "exact %g, min_line %zu, min_arc %zu)",
+                       o->sigma, o->tol_sigma, o->exact, o->min_line, o->min_arc);
+  if (!(bsfit__segment_size(pts, m) > 0))
+    return bsfit__fail(st, BSFIT_EDEGENERATE, "all %zu points coincide", m);
+  return BSFIT_OK;
+}
+
+/* The longest run of each kind: its length (rmax) and where it starts (from[kind]). */
+static void longest_runs(const section *s, size_t *const len[2], size_t rmax[2], size_t from[2]) {
+  size_t i;
+  int k;
+  rmax[0] = rmax[1] = from[0] = from[1] = 0;
+  for (i = 0; i < s->m; i++)
+    for (k = 0; k < 2; k++)
+      if (len[k][i] > rmax[k]) rmax[k] = len[k][i], from[k] = i;
+}
+
+/* The cheapest cover (pieces in order into p, from p[m + 1] as scratch). A closed
+** section is cut where a piece starts: tried at the starts of the longest line and arc
+** and at the samples after them, the cheapest kept. Returns the number of pieces. */
+static size_t cover(const section *s, size_t *const len[2], cell *prim, cell *fr, bsfit_piece *p) {
+  size_t rmax[2], from[2], origins[4], no = 0, k, i, best_np = 0;
+  double best = HUGE_VAL;
+  longest_runs(s, len, rmax, from);
+  for (k = 0; s->closed && k < 2; k++)
+    if (rmax[k] > 0) {
+      origins[no++] = from[k];
+      origins[no++] = (from[k] + rmax[k]) % s->m;
+    }
+  if (no == 0) origins[no++] = 0;
+  for (k = 0; k < no; k++) {
+    size_t np = cheapest_cover(s, origins[k], len, rmax, prim, fr, p + s->m + 1);
+    double c = fr[s->m - 1].cost < prim[s->m - 1].cost ? fr[s->m - 1].cost : prim[s->m - 1].cost;
+    if (c < best) {
+      best = c;
+      best_np = np;
+      for (i = 0; i < np; i++) p[i] = p[s->m + 1 + np - 1 - i]; /* traced backwards */
+    }
+  }
+  return best_np;
+}
+
+/* Under noise a line may take the first samples of the fillet after it (they lie within
+** the tolerance of both): each boundary sample goes to the neighbour whose model it
+** fits better, and both are refitted; a few rounds. */
+static void rebalance(const section *s, bsfit_piece *p, model *md, size_t np) {
+  size_t i, round;
+  for (round = 0; round < 3; round++) {
+    int moved = 0;
+    for (i = 0; i < np; i++) {
+      size_t ib = (i + 1) % np;
+      bsfit_piece *A = &p[i], *B = &p[ib];
+      if ((!s->closed && ib == 0) || np < 2 || A->kind == FREE || B->kind == FREE) continue;
+      if (B->first != (A->first + A->count) % s->m) continue; /* shared sample: a corner */
+      while (A->count > s->min_len[A->kind] + 1 &&
+             model_dist(&md[ib], sample(s, A->first + A->count - 1)) <
+                 model_dist(&md[i], sample(s, A->first + A->count - 1)))
+        A->count--, B->first = (B->first + s->m - 1) % s->m, B->count++, moved = 1;
+      while (B->count > s->min_len[B->kind] + 1 &&
+             model_dist(&md[i], sample(s, B->first)) < model_dist(&md[ib], sample(s, B->first)))
+        B->count--, B->first = (B->first + 1) % s->m, A->count++, moved = 1;
+      if (moved) {
+        refit(s, A, &md[i]);
+        refit(s, B, &md[ib]);
+      }
+    }
+    if (!moved) break;
+  }
+}
+
+/* A fillet: an arc meeting a line tangentially at both ends. Its circle is then known
+** from the two lines up to its radius (its centre on the bisector of their corner), so
+** it is refitted with that one unknown (Gauss-Newton on the geometric distances): a
+** short noisy arc alone leaves its radius uncertain by many percent, the lines fix all
+** but one of its parameters. The tangent points move to the new circle. */
+static void refit_fillet(const section *s, bsfit_piece *A, const model *ma, bsfit_piece *F,
+                         model *mf, bsfit_piece *B, const model *mb) {
+  double V[2], u[2], k, r = mf->circle.r, c[2], f[2], t[2], rms = 0, un, cosphi;
+  int it;
+  size_t j;
+  if (!bsfit__meet_lines(&ma->line, &mb->line, V)) return;
+  u[0] = mb->line.d[0] - ma->line.d[0];
+  u[1] = mb->line.d[1] - ma->line.d[1];
+  un = hypot(u[0], u[1]);
+  cosphi = -(ma->line.d[0] * mb->line.d[0] + ma->line.d[1] * mb->line.d[1]);
+  if (!(un > 1e-12) || cosphi >= 1 - 1e-12) return;
+  u[0] /= un, u[1] /= un;
+  k = 1.0 / sin(0.5 * acos(fmax(-1.0, fmin(1.0, cosphi))));
+  for (it = 0; it < 20; it++) {
+    double g = 0, h = 0, step;
+    for (j = 0; j < F->count; j++) {
+      const double *q = sample(s, F->first + j);
+      double dx = q[0] - V[0] - u[0] * k * r, dy = q[1] - V[1] - u[1] * k * r, d = hypot(dx, dy);
+      double e = d - r, de = d > 0 ? -(dx * u[0] + dy * u[1]) * k / d - 1.0 : -1.0;
+      g += de * e;
+      h += de * de;
+    }
+    if (!(h > 0)) return;
+    step = -g / h;
+    r += step;
+    if (!(r > 0)) return;
+    if (fabs(step) <= 1e-15 * r) break;
+  }
+  c[0] = V[0] + u[0] * k * r;
+  c[1] = V[1] + u[1] * k * r;
+  mf->circle.c[0] = c[0], mf->circle.c[1] = c[1], mf->circle.r = r;
+  F->centre[0] = c[0], F->centre[1] = c[1], F->radius = r;
+  foot(ma, c, f, t);
+  memcpy(A->end, f, sizeof f), memcpy(F->start, f, sizeof f);
+  foot(mb, c, f, t);
+  memcpy(B->start, f, sizeof f), memcpy(F->end, f, sizeof f);
+  foot(mf, F->start, f, F->t_start);
+  foot(mf, F->end, f, F->t_end);
+  F->max = bsfit__circle_max(&mf->circle, &(bsfit__run){s->pts, s->m, F->first, F->count}, &rms);
+  F->rms = rms;
+}
+
+static void refit_fillets(const section *s, bsfit_piece *p, model *md, size_t np) {
+  size_t i;
+  for (i = 0; i < np; i++) {
+    size_t ia = (i + np - 1) % np, ib = (i + 1) % np;
+    if (p[i].kind != ARC || np < 3 || p[ia].kind != LINE || p[ib].kind != LINE) continue;
+    if (!s->closed && (i == 0 || i + 1 == np)) continue;
+    if (p[i].join != BSFIT_JOIN_TANGENT || p[ib].join != BSFIT_JOIN_TANGENT) continue;
+    refit_fillet(s, &p[ia], &md[ia], &p[i], &md[i], &p[ib], &md[ib]);
+  }
+}
+
+/* Models, ends and sweeps of the np pieces of the cover (p has room for 2 np). */
+/* Does one arc holding every sample of a closed section go round its circle? The closing
+** step (from the last sample to the first, around the centre in the samples' direction)
+** must be no longer than 1.5 times the longest of the others: half a circle is an open
+** arc, however exactly it is sampled. */
+static int goes_round(const section *s, const bsfit_piece *p, const model *md) {
+  double longest = 0, closing = 0;
+  size_t k;
+  for (k = 0; k < p->count; k++) { /* the last step, k = count - 1, closes the section */
+    const double *a = sample(s, p->first + k), *b = sample(s, p->first + k + 1);
+    double ax = a[0] - md->circle.c[0], ay = a[1] - md->circle.c[1];
+    double bx = b[0] - md->circle.c[0], by = b[1] - md->circle.c[1];
+    double t = md->orient * atan2(ax * by - ay * bx, ax * bx + ay * by);
+    if (t < 0) t += 2 * PI;
+    if (k + 1 == p->count)
+      closing = t;
+    else if (t > longest)
+      longest = t;
+  }
+  return closing <= 1.5 * longest;
+}
+
+static size_t finish_pieces(const section *s, bsfit_piece *p, model *md, size_t np) {
+  size_t i;
+  for (i = 0; i < np; i++) {
+    md[i].kind = p[i].kind;
+    if (p[i].kind != FREE) refit(s, &p[i], &md[i]);
+  }
+  short_runs(s, p, md, np);
+  rebalance(s, p, md, np);
+  if (np == 1 && s->closed && p[0].kind == ARC &&
+      goes_round(s, &p[0], &md[0])) { /* a whole circle */
+    foot(&md[0], sample(s, p[0].first), p[0].start, p[0].t_start);
+    memcpy(p[0].end, p[0].start, sizeof p[0].end);
+    memcpy(p[0].t_end, p[0].t_start, sizeof p[0].t_end);
+    p[0].join = BSFIT_JOIN_TANGENT;
+    set_arc_sweep(&p[0], &md[0], 1);
+    return 1;
+  }
+  if (np == 1 && s->closed && p[0].kind == FREE) {
+    memcpy(p[0].start, sample(s, p[0].first), sizeof p[0].start);
+    memcpy(p[0].end, p[0].start, sizeof p[0].end);
+    p[0].join = BSFIT_JOIN_TANGENT;
+    return 1;
+  }
+  np = place_ends(s, p, md, np);
+  if (!s->closed) open_ends(s, p, md, np);
+  refit_fillets(s, p, md, np);
+  for (i = 0; i < np; i++) {
+    if (p[i].kind == LINE) set_line_ends(&p[i], &md[i]);
+    if (p[i].kind == ARC) set_arc_sweep(&p[i], &md[i], 0);
+  }
+  for (i = 0; i < np; i++) {
+    const bsfit_piece *q = &p[(i + np - 1) % np];
+    if (p[i].join != BSFIT_JOIN_CORNER) continue;
+    p[i].turn = atan2(fabs(q->t_end[0] * p[i].t_start[1] - q->t_end[1] * p[i].t_start[0]),
+                      q->t_end[0] * p[i].t_start[0] + q->t_end[1] * p[i].t_start[1]);
+    p[i].evidence = join_evidence(s, q, &md[(i + np - 1) % np], &p[i], &md[i], s->unit);
+  }
+  return np;
+}
+
+static void count_gaps(section *s) {
+  size_t i;
+  s->gaps[0] = 0;
+  for (i = 0; i < 2 * s->m; i++) {
+    const double *p = sample(s, i), *q = sample(s, i + 1);
+    s->gaps[i + 1] = s->gaps[i] + (hypot(q[0] - p[0], q[1] - p[1]) > s->tol);
+  }
+}
+
+bsfit_err bsfit_segment(const double *pts, size_t m, int dim, const bsfit_segment_opts *opts,
+                        bsfit_piece *pieces, size_t cap, size_t *count, const bsfit_allocator *a,
+                        bsfit_status *st) {
+  bsfit_segment_opts o;
+  section s;
+  size_t *len[2] = {NULL, NULL}, np, i;
+  cell *prim = NULL, *fr = NULL;
+  bsfit_piece *buf = NULL;
+  model *md = NULL;
+  bsfit_err e;
+  memset(&o, 0, sizeof o);
+  if (opts) o = *opts;
+  if (count) *count = 0;
+  if (count == NULL || (pieces == NULL && cap > 0))
+    return bsfit__fail(st, BSFIT_EINVAL, "segmentation: count (and pieces when cap > 0) required");
+  e = bsfit__segment_check(pts, m, dim, &o, st);
+  if (e != BSFIT_OK) return e;
+  s.pts = pts;
+  s.m = m;
+  s.closed = o.closed != 0;
+  s.a = a;
+  s.min_len[LINE] = o.min_line ? o.min_line : 3;
+  s.min_len[ARC] = o.min_arc ? o.min_arc : 4;
+  s.tol = fmax((o.tol_sigma > 0 ? o.tol_sigma : 4.0) * o.sigma,
+               (o.exact > 0 ? o.exact : 1e-10) * bsfit__segment_size(pts, m));
+  s.unit = s.tol / (o.tol_sigma > 0 ? o.tol_sigma : 4.0);
+  s.gaps = bsfit__alloc(a, bsfit__mulsize(2 * m + 1, sizeof(size_t)));
+  len[0] = bsfit__alloc(a, bsfit__mulsize(m, sizeof(size_t)));
+  len[1] = bsfit__alloc(a, bsfit__mulsize(m, sizeof(size_t)));
+  prim = bsfit__alloc(a, bsfit__mulsize(m, sizeof(cell)));
+  fr = bsfit__alloc(a, bsfit__mulsize(m, sizeof(cell)));
+  buf = bsfit__alloc(a, bsfit__mulsize(2 * m + 2, sizeof(bsfit_piece)));
+  md = bsfit__alloc(a, bsfit__mulsize(2 * m + 2, sizeof(model)));
+  if (!s.gaps || !len[0] || !len[1] || !prim || !fr || !buf || !md) {
+    e = bsfit__fail(st, BSFIT_ENOMEM, "out of memory for the segmentation of %zu points", m);
+    goto done;
+  }
+  count_gaps(&s);
+  if ((e = maximal_runs(&s, LINE, len[0])) != BSFIT_OK ||
+      (e = maximal_runs(&s, ARC, len[1])) != BSFIT_OK) {
+    e = bsfit__fail(st, e, "segmentation interrupted");
+    goto done;
+  }
+  np = cover(&s, len, prim, fr, buf);
+  np = finish_pieces(&s, buf, md, np);
+  for (i = 0; i < np && i < cap; i++) pieces[i] = buf[i];
+  *count = np;
+  e = bsfit__ok(st);
+done:
+  bsfit__free(a, s.gaps, s.gaps ? (2 * m + 1) * sizeof(size_t): 0);
+  bsfit__free(a, len[0], len[0] ? m * sizeof(size_t): 0);
+  bsfit__free(a, len[1], len[1] ? m * sizeof(size_t): 0);
+  bsfit__free(a, prim, prim ? m * sizeof(cell) : 0);
+  bsfit__free(a, fr, fr ? m * sizeof(cell) : 0);
+  bsfit__free(a, buf, buf ? (2 * m + 2) * sizeof(bsfit_piece) : 0);
+  bsfit__free(a, md, md ? (2 * m + 2) * sizeof(model) : 0);
+  return e;
+}

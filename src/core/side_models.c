@@ -1,0 +1,185 @@
+/*
+** side_models.c
+** The models a run of samples is compared with (features_internal.h): the total
+** least-squares line, the geometric least-squares circle, their distances and where
+** two of them meet. Coordinates are taken relative to the run's first sample, so that
+** runs far from the origin lose no digits.
+*/
+#include "features_internal.h"
+
+#include <math.h>
+
+int bsfit__fit_line(const bsfit__run *r, bsfit__line *L) {
+  const double *o = bsfit__run_at(r, 0), *z = bsfit__run_at(r, r->n - 1);
+  double mx = 0, my = 0, sxx = 0, sxy = 0, syy = 0, ang, dx, dy;
+  size_t k;
+  for (k = 0; k < r->n; k++) {
+    const double *p = bsfit__run_at(r, k);
+    mx += p[0] - o[0];
+    my += p[1] - o[1];
+  }
+  mx /= (double)r->n;
+  my /= (double)r->n;
+  for (k = 0; k < r->n; k++) {
+    const double *p = bsfit__run_at(r, k);
+    double x = p[0] - o[0] - mx, y = p[1] - o[1] - my;
+    sxx += x * x;
+    sxy += x * y;
+    syy += y * y;
+  }
+  if (sxx + syy <= 0) return 0;
+  /* the principal axis of the scatter: angle of its largest eigenvector */
+  ang = 0.5 * atan2(2.0 * sxy, sxx - syy);
+  L->d[0] = cos(ang);
+  L->d[1] = sin(ang);
+  dx = z[0] - o[0];
+  dy = z[1] - o[1];
+  if (L->d[0] * dx + L->d[1] * dy < 0) L->d[0] = -L->d[0], L->d[1] = -L->d[1];
+  L->p[0] = o[0] + mx;
+  L->p[1] = o[1] + my;
+  return 1;
+}
+
+double bsfit__line_dist(const bsfit__line *L, const double *x) {
+  return fabs((x[0] - L->p[0]) * L->d[1] - (x[1] - L->p[1]) * L->d[0]);
+}
+
+double bsfit__circle_dist(const bsfit__circle *C, const double *x) {
+  return fabs(hypot(x[0] - C->c[0], x[1] - C->c[1]) - C->r);
+}
+
+double bsfit__line_max(const bsfit__line *L, const bsfit__run *r, double *rms) {
+  double mx = 0, s = 0;
+  size_t k;
+  for (k = 0; k < r->n; k++) {
+    double d = bsfit__line_dist(L, bsfit__run_at(r, k));
+    s += d * d;
+    if (d > mx) mx = d;
+  }
+  if (rms) *rms = sqrt(s / (double)r->n);
+  return mx;
+}
+
+double bsfit__circle_max(const bsfit__circle *C, const bsfit__run *r, double *rms) {
+  double mx = 0, s = 0;
+  size_t k;
+  for (k = 0; k < r->n; k++) {
+    double d = bsfit__circle_dist(C, bsfit__run_at(r, k));
+    s += d * d;
+    if (d > mx) mx = d;
+  }
+  if (rms) *rms = sqrt(s / (double)r->n);
+  return mx;
+}
+
+/* the circle through a, b, c (relative to a); 0 when they are (nearly) collinear */
+static int circle3(const double *a, const double *b, const double *c, bsfit__circle *C) {
+  double bx = b[0] - a[0], by = b[1] - a[1], cx = c[0] - a[0], cy = c[1] - a[1];
+  double D = 2.0 * (bx * cy - by * cx), b2 = bx * bx + by * by, c2 = cx * cx + cy * cy;
+  double ux, uy;
+  if (!(fabs(D) > 1e-13 * sqrt(b2 * c2))) return 0;
+  ux = (cy * b2 - by * c2) / D;
+  uy = (bx * c2 - cx * b2) / D;
+  C->c[0] = a[0] + ux;
+  C->c[1] = a[1] + uy;
+  C->r = hypot(ux, uy);
+  return 1;
+}
+
+/* one Gauss-Newton step on sum (|p - c| - r)^2, in coordinates relative to o;
+** returns the step's length, or -1 when the normal matrix is singular */
+static double gauss_newton_step(const bsfit__run *r, const double *o, double *c, double *rad) {
+  double A[BSFIT__SMALL][BSFIT__SMALL] = {{0}}, g[3] = {0, 0, 0};
+  size_t k;
+  int i, j;
+  for (k = 0; k < r->n; k++) {
+    const double *p = bsfit__run_at(r, k);
+    double x = p[0] - o[0] - c[0], y = p[1] - o[1] - c[1], d = hypot(x, y), J[3], e;
+    if (d <= 0) continue;
+    J[0] = -x / d;
+    J[1] = -y / d;
+    J[2] = -1.0;
+    e = d - *rad;
+    for (i = 0; i < 3; i++) {
+      g[i] -= J[i] * e;
+      for (j = 0; j <= i; j++) A[i][j] += J[i] * J[j];
+    }
+  }
+  for (i = 0; i < 3; i++)
+    for (j = i + 1; j < 3; j++) A[i][j] = A[j][i];
+  if (!bsfit__small_cholesky(3, A)) return -1.0;
+  bsfit__small_chol_solve(3, A, g);
+  c[0] += g[0];
+  c[1] += g[1];
+  *rad += g[2];
+  return sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
+}
+
+int bsfit__fit_circle(const bsfit__run *r, const bsfit__circle *init, bsfit__circle *C) {
+  const double *o = bsfit__run_at(r, 0);
+  double c[2], rad, step;
+  int it;
+  if (r->n < 3) return 0;
+  if (init != NULL && r->n > 3)
+    *C = *init;
+  else if (!circle3(o, bsfit__run_at(r, r->n / 2), bsfit__run_at(r, r->n - 1), C))
+    return 0;
+  if (r->n == 3) return 1;
+  c[0] = C->c[0] - o[0];
+  c[1] = C->c[1] - o[1];
+  rad = C->r;
+  for (it = 0; it < 30; it++) {
+    step = gauss_newton_step(r, o, c, &rad);
+    if (step < 0 || !isfinite(rad)) return 0;
+    if (step <= 1e-15 * (rad + hypot(c[0], c[1]))) break;
+  }
+  if (!(rad > 0)) return 0;
+  C->c[0] = o[0] + c[0];
+  C->c[1] = o[1] + c[1];
+  C->r = rad;
+  return 1;
+}
+
+int bsfit__meet_lines(const bsfit__line *A, const bsfit__line *B, double x[2]) {
+  double den = A->d[0] * B->d[1] - A->d[1] * B->d[0], t;
+  if (fabs(den) < 1e-15) return 0;
+  t = ((B->p[0] - A->p[0]) * B->d[1] - (B->p[1] - A->p[1]) * B->d[0]) / den;
+  x[0] = A->p[0] + t * A->d[0];
+  x[1] = A->p[1] + t * A->d[1];
+  return 1;
+}
+
+int bsfit__meet_line_circle(const bsfit__line *L, const bsfit__circle *C, double x[2][2]) {
+  /* foot of the centre on the line, then +-h along it */
+  double t = (C->c[0] - L->p[0]) * L->d[0] + (C->c[1] - L->p[1]) * L->d[1];
+  double f[2] = {L->p[0] + t * L->d[0], L->p[1] + t * L->d[1]};
+  double e = hypot(C->c[0] - f[0], C->c[1] - f[1]), h2 = C->r * C->r - e * e, h;
+  if (h2 < -1e-12 * C->r * C->r) return 0;
+  h = h2 > 0 ? sqrt(h2) : 0.0;
+  if (h <= 1e-12 * C->r) {
+    x[0][0] = f[0], x[0][1] = f[1];
+    return 1;
+  }
+  x[0][0] = f[0] - h * L->d[0], x[0][1] = f[1] - h * L->d[1];
+  x[1][0] = f[0] + h * L->d[0], x[1][1] = f[1] + h * L->d[1];
+  return 2;
+}
+
+int bsfit__meet_circles(const bsfit__circle *A, const bsfit__circle *B, double x[2][2]) {
+  double dx = B->c[0] - A->c[0], dy = B->c[1] - A->c[1], d = hypot(dx, dy), a, h2, h, u[2];
+  double big = A->r > B->r ? A->r : B->r;
+  if (d <= 1e-14 * big) return 0;
+  a = (d * d + A->r * A->r - B->r * B->r) / (2.0 * d);
+  h2 = A->r * A->r - a * a;
+  if (h2 < -1e-12 * big * big) return 0;
+  h = h2 > 0 ? sqrt(h2) : 0.0;
+  u[0] = dx / d;
+  u[1] = dy / d;
+  if (h <= 1e-12 * big) {
+    x[0][0] = A->c[0] + a * u[0], x[0][1] = A->c[1] + a * u[1];
+    return 1;
+  }
+  x[0][0] = A->c[0] + a * u[0] - h * u[1], x[0][1] = A->c[1] + a * u[1] + h * u[0];
+  x[1][0] = A->c[0] + a * u[0] + h * u[1], x[1][1] = A->c[1] + a * u[1] - h * u[0];
+  return 2;
+}

@@ -1,0 +1,326 @@
+-- tests/lua/shapes_sharp.lua
+-- Sections built from straight lines and circular arcs, known exactly (issue 14): block
+-- letters with and without serifs, D shapes, slots, keyholes, gears, rounded rectangles,
+-- polygons with fillets; sampled at a chosen number of points per side, evenly or
+-- unevenly, with seeded Gaussian noise; and the exact distance of a point to the true
+-- outline, so the Hausdorff distance of a fitted curve to the truth is exact up to the
+-- density of the samples taken of the curve.
+--
+-- An outline is a list of primitives, in order, each ending where the next starts:
+--   {kind = "line", a = {x, y}, b = {x, y}}
+--   {kind = "arc", c = {x, y}, r = r, a0 = start angle, sweep = signed angle}
+-- plus `corners`, the points where two primitives meet at an angle.
+
+local M = {}
+
+local pi = math.pi
+
+-- {======================================================================
+-- Primitives
+-- =======================================================================
+
+local function line(a, b) return { kind = "line", a = a, b = b } end
+local function arc(c, r, a0, sweep) return { kind = "arc", c = c, r = r, a0 = a0, sweep = sweep } end
+
+-- the point at fraction f of primitive q, and its length
+local function at(q, f)
+  if q.kind == "line" then
+    return { q.a[1] + f * (q.b[1] - q.a[1]), q.a[2] + f * (q.b[2] - q.a[2]) }
+  end
+  local t = q.a0 + f * q.sweep
+  return { q.c[1] + q.r * math.cos(t), q.c[2] + q.r * math.sin(t) }
+end
+M.at = at
+
+local function length(q)
+  if q.kind == "line" then return math.sqrt((q.b[1] - q.a[1]) ^ 2 + (q.b[2] - q.a[2]) ^ 2) end
+  return q.r * math.abs(q.sweep)
+end
+
+-- unit tangent of q at fraction f
+local function tangent(q, f)
+  if q.kind == "line" then
+    local l = length(q)
+    return { (q.b[1] - q.a[1]) / l, (q.b[2] - q.a[2]) / l }
+  end
+  local t, s = q.a0 + f * q.sweep, q.sweep > 0 and 1 or -1
+  return { -s * math.sin(t), s * math.cos(t) }
+end
+
+-- exact distance from (x, y) to primitive q
+local function dist_to(q, x, y)
+  if q.kind == "line" then
+    local dx, dy = q.b[1] - q.a[1], q.b[2] - q.a[2]
+    local l2 = dx * dx + dy * dy
+    local t = math.max(0, math.min(1, ((x - q.a[1]) * dx + (y - q.a[2]) * dy) / l2))
+    return math.sqrt((q.a[1] + t * dx - x) ^ 2 + (q.a[2] + t * dy - y) ^ 2)
+  end
+  -- angle of the point measured from a0 in the sweep's direction
+  local th = math.atan(y - q.c[2], x - q.c[1])
+  local rel = (q.sweep > 0 and (th - q.a0) or (q.a0 - th)) % (2 * pi)
+  if rel <= math.abs(q.sweep) then
+    return math.abs(math.sqrt((x - q.c[1]) ^ 2 + (y - q.c[2]) ^ 2) - q.r)
+  end
+  local p0, p1 = at(q, 0), at(q, 1)
+  return math.min(math.sqrt((x - p0[1]) ^ 2 + (y - p0[2]) ^ 2), math.sqrt((x - p1[1]) ^ 2 + (y - p1[2]) ^ 2))
+end
+
+-- }======================================================================
+
+-- {======================================================================
+-- Outlines
+-- =======================================================================
+
+-- The outline of a polygon (counter-clockwise vertices) whose vertex k is rounded by a
+-- fillet of radius r[k] (0 or nil: a sharp corner). A fillet of radius r at a turn of
+-- angle th starts r tan(th/2) before the vertex, on both sides.
+function M.filleted(v, r)
+  local n, prims, corners = #v, {}, {}
+  local cut = {}
+  local function dir(a, b)
+    local l = math.sqrt((b[1] - a[1]) ^ 2 + (b[2] - a[2]) ^ 2)
+    return { (b[1] - a[1]) / l, (b[2] - a[2]) / l }
+  end
+  for k = 1, n do
+    local rk = r and r[k] or 0
+    local d1, d2 = dir(v[(k - 2) % n + 1], v[k]), dir(v[k], v[k % n + 1])
+    local cross, dot = d1[1] * d2[2] - d1[2] * d2[1], d1[1] * d2[1] + d1[2] * d2[2]
+    local th = math.atan(cross, dot)
+    if rk > 0 then
+      local t = rk * math.tan(math.abs(th) / 2)
+      local p, q = { v[k][1] - t * d1[1], v[k][2] - t * d1[2] }, { v[k][1] + t * d2[1], v[k][2] + t * d2[2] }
+      local s = th > 0 and 1 or -1 -- left turn: centre on the left
+      local c = { p[1] - s * rk * d1[2], p[2] + s * rk * d1[1] }
+      cut[k] = { p = p, q = q, arc = arc(c, rk, math.atan(p[2] - c[2], p[1] - c[1]), th) }
+    else
+      cut[k] = { p = v[k], q = v[k] }
+      corners[#corners + 1] = v[k]
+    end
+  end
+  for k = 1, n do
+    if cut[k].arc then prims[#prims + 1] = cut[k].arc end
+    prims[#prims + 1] = line(cut[k].q, cut[(k % n) + 1].p)
+  end
+  return { prims = prims, corners = corners }
+end
+
+-- A D shape: the half disc of radius R above the x axis.
+function M.d_shape(R)
+  return { prims = { line({ -R, 0 }, { R, 0 }), arc({ 0, 0 }, R, 0, pi) },
+           corners = { { -R, 0 }, { R, 0 } } }
+end
+
+-- A slot (stadium): length L between the centres of its two half circles of radius R.
+function M.slot(L, R)
+  return { prims = { line({ 0, -R }, { L, -R }), arc({ L, 0 }, R, -pi / 2, pi),
+                     line({ L, R }, { 0, R }), arc({ 0, 0 }, R, pi / 2, pi) }, corners = {} }
+end
+
+-- A keyhole: a circle of radius R on a slot of width 2w (w < R) and depth D below it.
+function M.keyhole(R, w, D)
+  local h = math.sqrt(R * R - w * w)
+  local a0 = math.atan(-h, w) -- where the slot's right side meets the circle
+  local sweep = 2 * pi - 2 * (a0 + pi / 2)
+  return { prims = { arc({ 0, 0 }, R, a0, sweep), line({ -w, -h }, { -w, -h - D }),
+                     line({ -w, -h - D }, { w, -h - D }), line({ w, -h - D }, { w, -h }) },
+           corners = { { -w, -h }, { -w, -h - D }, { w, -h - D }, { w, -h } } }
+end
+
+-- A gear of z trapezoidal teeth between radii r1 < r2 (a polygon).
+function M.gear(z, r1, r2)
+  local v = {}
+  for k = 0, z - 1 do
+    local a = 2 * pi * k / z
+    local s = 2 * pi / z
+    for _, t in ipairs { { 0, r1 }, { 0.3, r1 }, { 0.45, r2 }, { 0.8, r2 }, { 0.95, r1 } } do
+      v[#v + 1] = { t[2] * math.cos(a + t[1] * s), t[2] * math.sin(a + t[1] * s) }
+    end
+  end
+  -- consecutive root points on r1 (0.95 of one tooth, 0 of the next) are joined by a line
+  return M.filleted(v)
+end
+
+-- Block letters (counter-clockwise polygons), optionally with serifs.
+local letters = {
+  T = { { 2, 0 }, { 3, 0 }, { 3, 4 }, { 5, 4 }, { 5, 5 }, { 0, 5 }, { 0, 4 }, { 2, 4 } },
+  L = { { 0, 0 }, { 4, 0 }, { 4, 1 }, { 1, 1 }, { 1, 5 }, { 0, 5 } },
+  E = { { 0, 0 }, { 4, 0 }, { 4, 1 }, { 1, 1 }, { 1, 2 }, { 3, 2 }, { 3, 3 }, { 1, 3 }, { 1, 4 },
+        { 4, 4 }, { 4, 5 }, { 0, 5 } },
+  H = { { 0, 0 }, { 1, 0 }, { 1, 2 }, { 3, 2 }, { 3, 0 }, { 4, 0 }, { 4, 5 }, { 3, 5 }, { 3, 3 },
+        { 1, 3 }, { 1, 5 }, { 0, 5 } },
+  -- with serifs: the stems widen at their ends
+  Ts = { { 1.6, 0 }, { 3.4, 0 }, { 3.4, 0.3 }, { 3, 0.3 }, { 3, 4 }, { 4.7, 4 }, { 4.7, 3.7 },
+         { 5, 3.7 }, { 5, 5 }, { 0, 5 }, { 0, 3.7 }, { 0.3, 3.7 }, { 0.3, 4 }, { 2, 4 }, { 2, 0.3 },
+         { 1.6, 0.3 } },
+  Ls = { { 0, 0 }, { 4, 0 }, { 4, 1.3 }, { 3.7, 1.3 }, { 3.7, 1 }, { 1, 1 }, { 1, 4.7 }, { 1.3, 4.7 },
+         { 1.3, 5 }, { -0.3, 5 }, { -0.3, 4.7 }, { 0, 4.7 } },
+}
+
+function M.letter(name) return M.filleted(letters[name]) end
+
+-- A rounded rectangle w x h with fillets of radius r.
+function M.rounded_rect(w, h, r)
+  return M.filleted({ { 0, 0 }, { w, 0 }, { w, h }, { 0, h } }, { r, r, r, r })
+end
+
+-- A regular n-gon of circumradius R with fillets of radius r at every other vertex.
+function M.filleted_polygon(n, R, r)
+  local v, rr = {}, {}
+  for k = 0, n - 1 do
+    v[#v + 1] = { R * math.cos(2 * pi * k / n), R * math.sin(2 * pi * k / n) }
+    rr[#rr + 1] = k % 2 == 0 and r or 0
+  end
+  return M.filleted(v, rr)
+end
+
+-- Every outline of the generator, by name.
+function M.all()
+  return {
+    D = M.d_shape(10), slot = M.slot(6, 2), keyhole = M.keyhole(3, 1.2, 4), gear = M.gear(8, 4, 5),
+    T = M.letter("T"), L = M.letter("L"), E = M.letter("E"), H = M.letter("H"),
+    T_serif = M.letter("Ts"), L_serif = M.letter("Ls"), rrect = M.rounded_rect(60, 30, 1.5),
+    hexagon = M.filleted_polygon(6, 5, 1), pentagon = M.filleted_polygon(5, 5, 1.5),
+  }
+end
+
+-- }======================================================================
+
+-- {======================================================================
+-- Sampling, noise, distances
+-- =======================================================================
+
+-- LCG (deterministic everywhere) and Box-Muller
+function M.rng(seed)
+  local s = seed
+  local function uniform()
+    s = (s * 1103515245 + 12345) % 2147483648
+    return (s + 0.5) / 2147483648
+  end
+  local function gauss() return math.sqrt(-2 * math.log(uniform())) * math.cos(2 * pi * uniform()) end
+  return uniform, gauss
+end
+
+-- The size of an outline: its bounding-box diagonal.
+function M.size(o)
+  local lo, hi = { math.huge, math.huge }, { -math.huge, -math.huge }
+  for _, q in ipairs(o.prims) do
+    for f = 0, 1, 1 / 64 do
+      local p = at(q, f)
+      for d = 1, 2 do lo[d] = math.min(lo[d], p[d]); hi[d] = math.max(hi[d], p[d]) end
+    end
+  end
+  return math.sqrt((hi[1] - lo[1]) ^ 2 + (hi[2] - lo[2]) ^ 2)
+end
+
+-- Samples of outline o: per primitive k = per(q) points (a number, or a function of the
+-- primitive), evenly at fractions (j - 1/2)/k (so corners lie between samples) or, with
+-- `uneven`, at sorted random fractions; noise sigma (absolute) with `seed`.
+-- Returns a table of {x, y}.
+function M.sample(o, per, opts)
+  opts = opts or {}
+  local uniform, gauss = M.rng(opts.seed or 1)
+  local pts = {}
+  for _, q in ipairs(o.prims) do
+    local k = type(per) == "function" and per(q) or per
+    local fs = {}
+    for j = 1, k do
+      if opts.uneven then fs[j] = 0.05 + 0.9 * uniform() else fs[j] = (j - 0.5) / k end
+    end
+    table.sort(fs)
+    for _, f in ipairs(fs) do
+      local p = at(q, f)
+      local s = opts.sigma or 0
+      if s > 0 then p = { p[1] + s * gauss(), p[2] + s * gauss() } end
+      pts[#pts + 1] = p
+    end
+  end
+  return pts
+end
+
+-- exact distance from (x, y) to the outline
+function M.distance(o, x, y)
+  local d = math.huge
+  for _, q in ipairs(o.prims) do d = math.min(d, dist_to(q, x, y)) end
+  return d
+end
+
+-- the parameter of the nearest of the samples S (taken at a + (b - a) i / (#S - 1), or
+-- i / #S for a periodic curve) to each point of pts, through a grid of cells of size h
+local function nearest_params(C, S, pts, h)
+  local grid, xs, ys = {}, {}, {}
+  for i = 1, #S do
+    local x, y = S:get(i)
+    xs[i], ys[i] = x, y
+    local key = math.floor(x / h) * 1048576 + math.floor(y / h)
+    local l = grid[key]
+    if not l then l = {}; grid[key] = l end
+    l[#l + 1] = i
+  end
+  local a, b = C:domain()
+  local per = C:is_periodic()
+  local u = {}
+  for k, p in ipairs(pts) do
+    local cx, cy, best, bi, r = math.floor(p[1] / h), math.floor(p[2] / h), math.huge, 1, 0
+    while bi == 1 and best == math.huge or r <= 1 do
+      for dx = -r, r do
+        for dy = -r, r do
+          if math.max(math.abs(dx), math.abs(dy)) == r then
+            for _, i in ipairs(grid[(cx + dx) * 1048576 + cy + dy] or {}) do
+              local d = (xs[i] - p[1]) ^ 2 + (ys[i] - p[2]) ^ 2
+              if d < best then best, bi = d, i end
+            end
+          end
+        end
+      end
+      r = r + 1
+      if r > 4096 then break end
+    end
+    u[k] = a + (b - a) * (bi - 1) / (per and #S or (#S - 1))
+    -- and the distance to the sampled polyline's two edges at that sample (exact where
+    -- the curve is straight, where Newton may stall at a corner of the curve)
+    local e = math.huge
+    for _, j in ipairs { bi - 1, bi + 1 } do
+      local jj = per and (j - 1) % #S + 1 or math.min(math.max(j, 1), #S)
+      e = math.min(e, dist_to(line({ xs[bi], ys[bi] }, { xs[jj], ys[jj] }), p[1], p[2]))
+    end
+    u[#pts + k] = e
+  end
+  return u
+end
+
+-- Hausdorff distance between curve C and outline o: from k samples of C to o (exact
+-- distances), and from points along o (each primitive cut into `dense` parts) to C
+-- (Newton from the nearest of k samples of C: the closest point of C itself).
+function M.hausdorff(bs, C, o, k, dense)
+  k = k or 4000
+  local S, h = C:sample(k), 0
+  for i = 1, #S do
+    local x, y = S:get(i)
+    h = math.max(h, M.distance(o, x, y))
+  end
+  local pts = {}
+  for _, q in ipairs(o.prims) do
+    for j = 0, (dense or 200) do pts[#pts + 1] = at(q, j / (dense or 200)) end
+  end
+  -- Newton from the nearest sample and from its two neighbours (a foot across a corner
+  -- of C stalls at the corner): the least of the three distances
+  local u0 = nearest_params(C, S, pts, M.size(o) / 128)
+  local a, b = C:domain()
+  local step, Q, best = (b - a) / #S, bs.points.new(pts), {}
+  for i = 1, #pts do best[i] = u0[#pts + i]; u0[#pts + i] = nil end
+  for _, off in ipairs { -1, 0, 1 } do
+    local u = {}
+    for i = 1, #pts do local x = u0[i]; u[i] = math.min(math.max(x + off * step, a), b) end
+    local _, d = C:project(Q, bs.vector.new(u), 30)
+    for i = 1, #pts do best[i] = math.min(best[i] or math.huge, d:get(i)) end
+  end
+  for i = 1, #pts do h = math.max(h, best[i]) end
+  return h
+end
+
+M.tangent = tangent
+M.length = length
+
+-- }======================================================================
+
+return M
