@@ -20,8 +20,8 @@
 
 #define LOCAL_ITERS 4   /* Newton steps of the local mode */
 #define REFINE_ITERS 30 /* golden-section steps for the largest distance (global mode) */
-#define REFINE_MAX 64    /* local maxima refined, at most ... */
-#define REFINE_NEAR 0.1  /* ... among those within this fraction of the largest sample */
+#define REFINE_MAX 16    /* local maxima refined, at most ... */
+#define REFINE_NEAR 0.5  /* ... among those within this fraction of the largest sample */
 
 /* Number of samples on the domain spans of c, per_span per span plus the end. */
 static size_t sample_count(const bsfit_curve *c, size_t per_span) {
@@ -77,7 +77,7 @@ static double dist_from(const bsfit_curve *x, const bsfit_curve *y, double t, do
 ** maximum of the distance over the two sample intervals around the worst sample i, the
 ** foot followed by Newton from the sample's. */
 static double refine_max(const bsfit_curve *x, const bsfit_curve *y, const double *t,
-                         const double *u, size_t m, size_t i, double worst) {
+                         const double *u, size_t m, size_t i, double worst, int verify) {
   const double g = 0.6180339887498949;
   double lo = t[i > 0 ? i - 1 : 0], hi = t[i + 1 < m ? i + 1 : m - 1], x1, x2, f1, f2;
   double u1 = u[i], u2 = u[i];
@@ -97,19 +97,21 @@ static double refine_max(const bsfit_curve *x, const bsfit_curve *y, const doubl
       f2 = dist_from(x, y, x2, &u2);
     }
   }
-  {
-    /* the search followed one foot: the global closest point may be nearer */
+  if (verify) {
+    /* the search followed feet by Newton: for curves that need not correspond, the
+    ** global closest point may be nearer */
     double tb = f1 > f2 ? x1 : x2, fb = fmax(f1, f2), P[4], ug, dg;
     bsfit__curve_eval_unchecked(x, tb, P);
     if (bsfit_curve_closest(y, P, &ug, &dg, NULL) == BSFIT_OK && dg < fb) fb = dg;
     return fmax(worst, fb);
   }
+  return fmax(worst, fmax(f1, f2));
 }
 
 /* One direction: samples of x projected onto y. Where `on_y` the span attribution uses
 ** the feet on y, else the samples' parameters on x. */
 static bsfit_err one_way(const bsfit_curve *x, const bsfit_curve *y, size_t per_span,
-                         int local, const bsfit__breaks *br, double *span_max, int on_y,
+                         int mode, const bsfit__breaks *br, double *span_max, int on_y,
                          const bsfit_allocator *al, double *worst, bsfit_status *st) {
   size_t m = sample_count(x, per_span), d = (size_t)x->dim, i, imax = 0;
   size_t bytes = bsfit__mulsize(m, (5 + d) * sizeof(double));
@@ -124,7 +126,7 @@ static bsfit_err one_way(const bsfit_curve *x, const bsfit_curve *y, size_t per_
   sample(x, per_span, t, pts);
   memcpy(u, t, m * sizeof(double));
   e = bsfit_curve_project_many(y, pts, m, u, dist, LOCAL_ITERS, st);
-  if (e == BSFIT_OK && !local) {
+  if (e == BSFIT_OK && mode != BSFIT__DIST_LOCAL) {
     e = bsfit_curve_closest_many(y, pts, m, ug, dg, st);
     for (i = 0; e == BSFIT_OK && i < m; i++)
       if (dg[i] < dist[i]) dist[i] = dg[i], u[i] = ug[i];
@@ -137,7 +139,7 @@ static bsfit_err one_way(const bsfit_curve *x, const bsfit_curve *y, size_t per_
       if (dist[i] > span_max[s]) span_max[s] = dist[i];
     }
   }
-  if (e == BSFIT_OK && !local) {
+  if (e == BSFIT_OK && mode != BSFIT__DIST_LOCAL) {
     /* the local maxima of the sampled distance near the largest one */
     double top = dist[imax];
     int done = 0;
@@ -145,7 +147,7 @@ static bsfit_err one_way(const bsfit_curve *x, const bsfit_curve *y, size_t per_
       if (dist[i] < REFINE_NEAR * top || (i > 0 && dist[i - 1] > dist[i]) ||
           (i + 1 < m && dist[i + 1] > dist[i]))
         continue;
-      *worst = refine_max(x, y, t, u, m, i, *worst);
+      *worst = refine_max(x, y, t, u, m, i, *worst, mode == BSFIT__DIST_VERIFIED);
       done++;
     }
   }
@@ -154,13 +156,13 @@ static bsfit_err one_way(const bsfit_curve *x, const bsfit_curve *y, size_t per_
 }
 
 bsfit_err bsfit__curve_distance(const bsfit_curve *s, const bsfit_curve *c, size_t per_span,
-                                int local, const bsfit__breaks *br, double *span_max,
+                                int mode, const bsfit__breaks *br, double *span_max,
                                 const bsfit_allocator *al, double *out, bsfit_status *st) {
   double worst = 0.0;
   bsfit_err e;
   if (span_max != NULL) memset(span_max, 0, (br->n - 1) * sizeof(double));
-  e = one_way(s, c, per_span, local, br, span_max, 0, al, &worst, st);
-  if (e == BSFIT_OK) e = one_way(c, s, per_span, local, br, span_max, 1, al, &worst, st);
+  e = one_way(s, c, per_span, mode, br, span_max, 0, al, &worst, st);
+  if (e == BSFIT_OK) e = one_way(c, s, per_span, mode, br, span_max, 1, al, &worst, st);
   if (e != BSFIT_OK) return e;
   *out = worst;
   return BSFIT_OK;
@@ -179,6 +181,6 @@ bsfit_err bsfit_curve_distance(const bsfit_curve *a, const bsfit_curve *b, size_
     return bsfit__fail(st, BSFIT_EDIM, "curves of dimensions %d and %d", a->dim, b->dim);
   if (per_span < 1) return bsfit__fail(st, BSFIT_EINVAL, "samples per span must be >= 1");
   al = a->alloc;
-  e = bsfit__curve_distance(a, b, per_span, 0, NULL, NULL, &al, out, st);
+  e = bsfit__curve_distance(a, b, per_span, BSFIT__DIST_VERIFIED, NULL, NULL, &al, out, st);
   return e == BSFIT_OK ? bsfit__ok(st) : e;
 }

@@ -87,12 +87,17 @@ bsfit_err bsfit__project_coarse(const bsfit__fview *in, int periodic, int q,
 bsfit_err bsfit__fspline_to_curve(bsfit__fspline *f, int dim, int periodic,
                                   const bsfit_allocator *a, bsfit_curve *out, bsfit_status *st);
 
+/* Modes of bsfit__curve_distance: Newton from the same parameter only (an upper bound,
+** for searches); the global closest point too, the largest distances refined, for
+** curves that correspond parameter by parameter; the same, each refined maximum checked
+** by a global closest point (any two curves). */
+enum { BSFIT__DIST_LOCAL = 1, BSFIT__DIST_CORRESPONDING = 2, BSFIT__DIST_VERIFIED = 3 };
+
 /* The distance between curves s and c (filter_distance.c): per_span samples per knot span
-** of each projected onto the other; local: Newton from the same parameter (an upper
-** bound), else the global closest point. span_max (br->n - 1 values, or NULL) receives
-** the largest distance attributed to each break span of s. */
+** of each projected onto the other, by `mode`. span_max (br->n - 1 values, or NULL)
+** receives the largest distance attributed to each break span of s. */
 bsfit_err bsfit__curve_distance(const bsfit_curve *s, const bsfit_curve *c, size_t per_span,
-                                int local, const bsfit__breaks *br, double *span_max,
+                                int mode, const bsfit__breaks *br, double *span_max,
                                 const bsfit_allocator *al, double *out, bsfit_status *st);
 
 typedef struct bsfit__reduce_arg {

@@ -421,7 +421,8 @@ bsfit_err bsfit__reduce_loop(const bsfit_curve *c, const bsfit__reduce_arg *r, b
       if (span_max == NULL) e = bsfit__fail(st, BSFIT_ENOMEM, "out of memory for span deviations");
     }
     if (e == BSFIT_OK)
-      e = bsfit__curve_distance(res, r->measure ? r->measure : c, r->per_span, r->local, b,
+      e = bsfit__curve_distance(res, r->measure ? r->measure : c, r->per_span,
+                                r->local ? BSFIT__DIST_LOCAL : BSFIT__DIST_CORRESPONDING, b,
                                 span_max, al, &rep->max_deviation, st);
     rep->rounds++;
     if (e != BSFIT_OK || rep->max_deviation <= r->tol) break;

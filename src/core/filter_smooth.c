@@ -107,7 +107,8 @@ static bsfit_err evaluate(smooth_ctx *x, int r, double delta, candidate *k, bsfi
   e = bsfit__project_coarse(&v, k->F.periodic, x->q, &b, x->al, &f, st);
   if (e == BSFIT_OK) e = bsfit__fspline_to_curve(&f, x->c->dim, x->c->periodic, x->al, &k->S, st);
   if (e == BSFIT_OK)
-    e = bsfit__curve_distance(&k->S, x->c, SEARCH_SAMPLES, 1, &b, NULL, x->al, &k->dev, st);
+    e = bsfit__curve_distance(&k->S, x->c, SEARCH_SAMPLES, BSFIT__DIST_LOCAL, &b, NULL, x->al,
+                              &k->dev, st);
   bsfit__breaks_free(x->al, &b);
   return e;
 }

@@ -27,6 +27,8 @@ usage: bsfit reconstruct [INPUT...] [options]
   --count N|auto   control points (default auto: the paper's inversion / 50% rule)
   --tol T          auto, periodic: add control points until the max deviation is <= T
   --open           fit open curves (auto and periodic strategies)
+  --smooth-tol T   then smooth each curve as much as possible within distance T
+                   (kernel filters, result cubic: docs/filtering.md)
   --samples K      curve samples written to <name>.csv (default 1000)
   --format LIST    any of json,svg,csv,iges (default json,svg,csv)
   -j N             run N sections at a time, one Lua state per worker (default 1)
@@ -70,6 +72,12 @@ local flags = {
   ["--tol"] = function(o, v)
     o.tol = tonumber(v)
     if not o.tol or not (o.tol >= 0) then error("--tol must be a number >= 0, got '" .. v .. "'", 0) end
+  end,
+  ["--smooth-tol"] = function(o, v)
+    o.smooth_tol = tonumber(v)
+    if not (o.smooth_tol and o.smooth_tol > 0 and o.smooth_tol < math.huge) then
+      error("--smooth-tol must be a number > 0, got '" .. v .. "'", 0)
+    end
   end,
   ["--samples"] = function(o, v)
     o.samples = positive_integer(v, "--samples")
@@ -280,6 +288,7 @@ local function strategy_opts(spec, w)
   if spec.count then o.count = spec.count end
   if spec.tol then o.tol = spec.tol end
   if spec.open then o.closed = false end
+  if spec.smooth_tol then o.smooth = { tol = spec.smooth_tol } end
   if w then o.point_weights = w end
   return o
 end
@@ -328,6 +337,7 @@ local function specs_of(o, inputs)
   for i, inp in ipairs(inputs) do
     specs[i] = { path = inp.path, name = inp.name, outdir = o.outdir, strategy = o.strategy,
                  degree = o.degree, count = o.count, tol = o.tol, open = o.open,
+                 smooth_tol = o.smooth_tol,
                  samples = o.samples, formats = o.formats }
   end
   return specs
