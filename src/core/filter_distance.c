@@ -18,7 +18,7 @@
 #include <math.h>
 #include <string.h>
 
-#define LOCAL_ITERS 4   /* Newton steps of the local mode */
+#define LOCAL_ITERS 2   /* Newton steps of the local mode (the start is close already) */
 #define REFINE_ITERS 30 /* golden-section steps for the largest distance (global mode) */
 #define REFINE_MAX 16    /* local maxima refined, at most ... */
 #define REFINE_NEAR 0.5  /* ... among those within this fraction of the largest sample */

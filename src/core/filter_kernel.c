@@ -11,6 +11,7 @@
 */
 #include "filter_internal.h"
 
+#include <float.h>
 #include <math.h>
 #include <string.h>
 
@@ -85,6 +86,110 @@ static bsfit_err check_order(int order, int degree, const char *dir, bsfit_statu
   return BSFIT_OK;
 }
 
+/* {====================================================================
+** Closed curves, exact filter: unwrapped once over enough periods for all r passes, the
+** passes on the open curve, one period read back (the box filter's closed case, which
+** unwraps again at every pass, over a fixed margin)
+** ===================================================================== */
+
+/* Knot t_j of the periodic sequence, j any integer. */
+static double periodic_knot(const bsfit_curve *c, size_t N, long j) {
+  size_t p = (size_t)c->degree;
+  long m = j % (long)N, fl = j / (long)N;
+  double T = c->knots[p + N] - c->knots[p];
+  if (m < 0) {
+    m += (long)N;
+    fl--;
+  }
+  return c->knots[p + (size_t)m] + (double)fl * T;
+}
+
+/* c as an open spline over 2M + 1 periods (the middle one c's domain). */
+static bsfit_err unwrap(const bsfit_curve *c, size_t M, const bsfit_allocator *a,
+                        bsfit__fspline *o, bsfit_status *st) {
+  size_t p = (size_t)c->degree, N = c->n - p, d = (size_t)c->dim, n = N + p + 2 * M * N, i;
+  long i0 = -(long)(M * N);
+  bsfit_err e = bsfit__fspline_alloc(a, o, c->degree, n, d, st);
+  if (e != BSFIT_OK) return e;
+  for (i = 0; i < n + p + 1; i++) o->U[i] = periodic_knot(c, N, i0 - (long)p + (long)i);
+  for (i = 0; i < n; i++) {
+    long j = (i0 + (long)i) % (long)N;
+    memcpy(o->P + i * d, c->ctrl + (size_t)(j < 0 ? j + (long)N : j) * d, d * sizeof(double));
+  }
+  return BSFIT_OK;
+}
+
+/* One period [t0, t0 + T] of the open result f, t0 its first knot at or after lo, as a
+** periodic curve (expanded form). */
+static bsfit_err read_period(bsfit__fspline *f, double lo, double T, int dim,
+                             const bsfit_allocator *a, bsfit_curve *out, bsfit_status *st) {
+  size_t q = (size_t)f->p, d = f->d, nk = f->n + q + 1, j0 = 0, jE, N2;
+  double tol = 64.0 * DBL_EPSILON * (fabs(lo) + fabs(f->U[nk - 1]) + fabs(f->U[0]));
+  bsfit_curve res;
+  bsfit_err e;
+  while (j0 < nk && f->U[j0] < lo - tol) j0++;
+  for (jE = j0; jE < nk && f->U[jE] < f->U[j0] + T - tol; jE++) continue;
+  N2 = jE - j0;
+  if (j0 < q || jE + q >= nk || N2 < q + 1)
+    return bsfit__fail(st, BSFIT_ENOTPERIODIC,
+                       "the filtered closed curve has %zu knot spans per period, fewer than "
+                       "degree + 1 = %zu", N2, q + 1);
+  bsfit_curve_init(&res);
+  /* the period's knots t_0..t_N2 sit in f->U[j0..]; t_N2 is t_0 + T exactly */
+  {
+    double save = f->U[jE];
+    f->U[jE] = f->U[j0] + T;
+    e = bsfit_curve_new_periodic(&res, (int)q, dim, N2, f->U + j0, f->P + (j0 - q) * d, NULL,
+                                 a, st);
+    f->U[jE] = save;
+  }
+  if (e != BSFIT_OK) return e;
+  bsfit_curve_move(&res, out);
+  return BSFIT_OK;
+}
+
+static bsfit_err kernel_closed_exact(const bsfit_curve *c, int order, double delta,
+                                     bsfit_curve *out, bsfit_status *st) {
+  bsfit_allocator a = c->alloc;
+  double lo, hi, T;
+  size_t N = bsfit_curve_distinct(c), M;
+  bsfit__fspline u, f;
+  bsfit__fview v;
+  kernel_arg arg = {1, 0, 0.0, 0};
+  bsfit_err e;
+  bsfit_curve_domain(c, &lo, &hi);
+  T = hi - lo;
+  /* room for the kernel's support r delta and the q + 1 knots read around the period */
+  M = 1 + (size_t)floor(order * delta / T) + ((size_t)(c->degree + order) + 1) / N;
+  arg.delta = delta;
+  e = unwrap(c, M, &a, &u, st);
+  if (e != BSFIT_OK) return e;
+  v = view_of(&u);
+  e = passes(&v, order, &arg, &a, &f, st);
+  bsfit__fspline_free(&a, &u);
+  if (e != BSFIT_OK) return e;
+  e = read_period(&f, lo, T, c->dim, &a, out, st);
+  bsfit__fspline_free(&a, &f);
+  return e == BSFIT_OK ? bsfit__ok(st) : e;
+}
+
+/* }==================================================================== */
+
+/* What bsfit_filter_box_curve_delta checks of a closed curve. */
+static bsfit_err check_closed(const bsfit_curve *c, double delta, bsfit_status *st) {
+  double lo, hi;
+  bsfit_err e = bsfit_curve_validate(c, st);
+  if (e != BSFIT_OK) return e;
+  if (c->weights != NULL)
+    return bsfit__fail(st, BSFIT_EINVAL, "rational curves cannot be filtered");
+  bsfit_curve_domain(c, &lo, &hi);
+  if (!isfinite(delta)) return bsfit__fail(st, BSFIT_ENONFINITE, "delta is not finite");
+  if (!(delta > 0) || 2.0 * delta > hi - lo)
+    return bsfit__fail(st, BSFIT_EINVAL, "delta = %g must be > 0 and at most half the period %g",
+                       delta, hi - lo);
+  return BSFIT_OK;
+}
+
 /* The first pass is checked by the box filter itself (bsfit_filter_box_curve*): out is
 ** written only by the last pass, so an error leaves it unchanged. */
 static bsfit_err kernel_curve(const bsfit_curve *c, int order, const kernel_arg *arg,
@@ -96,6 +201,10 @@ static bsfit_err kernel_curve(const bsfit_curve *c, int order, const kernel_arg 
   bsfit_err e;
   if (c == NULL || out == NULL) return bsfit__fail(st, BSFIT_EINVAL, "curve or output is NULL");
   if (c->n > 0 && (e = check_order(order, c->degree, "", st)) != BSFIT_OK) return e;
+  if (arg->exact && c->periodic && order > 1) {
+    e = check_closed(c, arg->delta, st);
+    return e == BSFIT_OK ? kernel_closed_exact(c, order, arg->delta, out, st) : e;
+  }
   bsfit_curve_init(&first);
   e = arg->exact ? bsfit_filter_box_curve_delta(c, arg->delta, &first, st)
                  : bsfit_filter_box_curve(c, arg->k, &first, st);

@@ -26,8 +26,8 @@
 #define MAX_AUTO_ORDER 4
 #define SEARCH_EVALS 12   /* evaluations per order, at most */
 #define SEARCH_RATIO 1.08 /* stop when the bracket [lo, hi] has hi <= lo * SEARCH_RATIO */
-#define SEARCH_SAMPLES 4  /* local distance: samples per knot span */
-#define FINAL_SAMPLES 16  /* true distance of the result: samples per knot span */
+#define SEARCH_SAMPLES 3  /* local distance: samples per knot span */
+#define FINAL_SAMPLES 8   /* true distance of the result: samples per knot span */
 #define ENERGY_SAMPLES 8  /* energy and turning: samples per knot span of C (>= 256) */
 #define SEARCH_MARGIN 0.95 /* the search keeps the sampled distance under this much of tol */
 #define FINAL_TRIES 6     /* the winner's width shrinks at most this often ... */
