@@ -22,6 +22,8 @@
 #define MAX_GL 64         /* Gauss-Legendre nodes per span, at most */
 #define RATIONAL_EXTRA 8  /* more nodes for rational input, whose integrand is not polynomial */
 #define DEFAULT_SAMPLES 16
+#define MIN_SPAN 1e-6     /* spans narrower than this much of the domain are not split */
+#define STALL_ROUNDS 3    /* rounds of knots added that may leave the deviation as it was */
 
 /* {====================================================================
 ** Break points with multiplicities (the target space)
@@ -390,13 +392,16 @@ static bsfit_err project_curve(const bsfit_curve *c, int q, const bsfit__breaks 
 }
 
 /* A knot in the middle of every break span whose deviation exceeds tol (from the last
-** span down, so the indices still to visit do not move). Returns the number added. */
+** span down, so the indices still to visit do not move), unless the span is already
+** narrower than MIN_SPAN of the domain: a deviation that refining does not cure there is
+** the input's own (a corner, a spike), not the projection's. Returns the number added. */
 static bsfit_err split_spans(bsfit__breaks *b, const double *span_max, double tol,
                              const bsfit_allocator *al, size_t *count) {
   size_t i = b->n - 1;
+  double w = MIN_SPAN * (b->x[b->n - 1] - b->x[0]);
   *count = 0;
   while (i-- > 0) {
-    if (!(span_max[i] > tol)) continue;
+    if (!(span_max[i] > tol) || b->x[i + 1] - b->x[i] < w) continue;
     if (breaks_insert(al, b, i, 0.5 * (b->x[i] + b->x[i + 1])) != BSFIT_OK) return BSFIT_ENOMEM;
     (*count)++;
   }
@@ -408,6 +413,8 @@ bsfit_err bsfit__reduce_loop(const bsfit_curve *c, const bsfit__reduce_arg *r, b
                              bsfit_reduce_report *rep, bsfit_status *st) {
   double *span_max = NULL;
   size_t cap = 0, added = 0, now;
+  double best = INFINITY;
+  int stalled = 0;
   bsfit_err e;
   rep->knots_added = 0;
   rep->rounds = 0;
@@ -420,13 +427,21 @@ bsfit_err bsfit__reduce_loop(const bsfit_curve *c, const bsfit__reduce_arg *r, b
       span_max = bsfit__alloc(al, cap * sizeof(double));
       if (span_max == NULL) e = bsfit__fail(st, BSFIT_ENOMEM, "out of memory for span deviations");
     }
+    /* the local measure (an upper bound) first: the global one, dearer, only to confirm
+    ** a result the local one finds within tol */
     if (e == BSFIT_OK)
+      e = bsfit__curve_distance(res, r->measure ? r->measure : c, r->per_span, BSFIT__DIST_LOCAL,
+                                b, span_max, al, &rep->max_deviation, st);
+    if (e == BSFIT_OK && !r->local && rep->max_deviation <= r->tol)
       e = bsfit__curve_distance(res, r->measure ? r->measure : c, r->per_span,
-                                r->local ? BSFIT__DIST_LOCAL : BSFIT__DIST_CORRESPONDING, b,
-                                span_max, al, &rep->max_deviation, st);
+                                BSFIT__DIST_CORRESPONDING, b, span_max, al, &rep->max_deviation,
+                                st);
     rep->rounds++;
     if (e != BSFIT_OK || rep->max_deviation <= r->tol) break;
-    if (added >= r->max_added) {
+    /* knots that do not lower the deviation cannot meet tol: the input's own detail */
+    stalled = rep->max_deviation < 0.99 * best ? 0 : stalled + 1;
+    if (rep->max_deviation < best) best = rep->max_deviation;
+    if (added >= r->max_added || stalled >= STALL_ROUNDS) {
       e = bsfit__fail(st, BSFIT_ENOCONV,
                       "degree %d within tol = %g not reached after adding %zu knots "
                       "(deviation %g)", r->degree, r->tol, added, rep->max_deviation);

@@ -2,17 +2,17 @@
 ** filter_smooth.c
 ** Smoothing to a tolerance: the smoothest curve of degree q within tol of C that the
 ** kernel filters give. "Smoothest" is the least bending energy (the integral of
-** curvature^2 ds, bsfit_curve_bending_energy). For each kernel order r (the given one,
-** or 1..MAX_AUTO_ORDER) the half-width delta is searched: the filter of order r and
-** half-width delta, projected on degree q (filter_reduce.c, on C's own break points),
-** must stay within tol of C, measured by the local distance of filter_distance.c (an
-** upper bound of the true one). The deviation grows like delta^2 for small delta, so
-** the search steps by sqrt(tol / deviation) until it brackets the largest feasible
-** delta, then narrows the bracket (secant in that model, or bisection in log delta) to
-** 8%. Wider windows give less energy, so the largest feasible delta of each order is
-** its best; the order whose result has least energy wins. The winner is projected
-** again with knots added until its true distance (global closest points, dense
-** samples) is within tol. When no width keeps C within tol, or the best result is not
+** curvature^2 ds, bsfit_curve_bending_energy). For each kernel order r (the given one, or
+** 1..MAX_AUTO_ORDER) the widest half-width delta is searched whose filtered curve stays
+** within SEARCH_MARGIN tol of C, by the local distance of filter_distance.c (an upper
+** bound of the true one): the distance of a noisy curve's filter does not grow
+** monotonically with delta, so the search steps delta up geometrically until the distance
+** is well beyond tol, then bisects next to the widest feasible width (search_order).
+** Wider windows give less energy; the order whose filtered curve has least energy wins.
+** The winner is brought to degree q by the L2 projection on C's own break points
+** (filter_reduce.c), knots added where its true distance to C (global closest points,
+** refined maxima) exceeds tol; if that does not converge the width shrinks and the
+** projection is tried again. When no width keeps C within tol, or the best result is not
 ** smoother than C, C is returned unchanged (at degree q) and the report says so.
 */
 #include "filter_internal.h"
@@ -20,18 +20,18 @@
 #include <float.h>
 #include <math.h>
 #include <string.h>
-#include <stdio.h>
-#include <stdlib.h>
 
 #define MAX_AUTO_ORDER 4
-#define SEARCH_EVALS 12   /* evaluations per order, at most */
-#define SEARCH_RATIO 1.08 /* stop when the bracket [lo, hi] has hi <= lo * SEARCH_RATIO */
-#define SEARCH_SAMPLES 3  /* local distance: samples per knot span */
-#define FINAL_SAMPLES 8   /* true distance of the result: samples per knot span */
+#define SEARCH_STEP 1.4   /* the widths tried grow by this factor ... */
+#define SEARCH_BEYOND 1.5 /* ... until the distance is this many times tol */
+#define SEARCH_DOWN 16    /* steps down from the first guess, at most */
+#define SEARCH_BISECT 3   /* bisections after the steps (the last bracket: 1.4^(1/8)) */
+#define SEARCH_SAMPLES 2  /* local distance: samples per knot span */
+#define FINAL_SAMPLES 16  /* true distance of the result: samples per knot span */
 #define ENERGY_SAMPLES 8  /* energy and turning: samples per knot span of C (>= 256) */
-#define SEARCH_MARGIN 0.95 /* the search keeps the sampled distance under this much of tol */
-#define FINAL_TRIES 6     /* the winner's width shrinks at most this often ... */
-#define FINAL_SHRINK 0.85 /* ... by this factor, when the true distance exceeds tol */
+#define SEARCH_MARGIN 0.995 /* the filter keeps this much of tol; the rest goes to the degree reduction */
+#define FINAL_TRIES 8     /* the winner's width shrinks at most this often ... */
+#define FINAL_SHRINK 0.7  /* ... by this factor at least, when the true distance exceeds tol */
 
 /* What the search carries. */
 typedef struct smooth_ctx {
@@ -46,23 +46,19 @@ typedef struct smooth_ctx {
   int evals;
 } smooth_ctx;
 
-/* One candidate: the filter F and its projection S. */
+/* One candidate: the filtered curve F, its distance to C and its energy. */
 typedef struct candidate {
   int order;
   double delta, dev, energy;
-  bsfit_curve F, S;
+  bsfit_curve F;
 } candidate;
 
 static void cand_init(candidate *k) {
   memset(k, 0, sizeof *k);
   bsfit_curve_init(&k->F);
-  bsfit_curve_init(&k->S);
 }
 
-static void cand_free(candidate *k) {
-  bsfit_curve_free(&k->F);
-  bsfit_curve_free(&k->S);
-}
+static void cand_free(candidate *k) { bsfit_curve_free(&k->F); }
 
 /* The break points of the target for the filtered F: C's, and F's domain ends (an open
 ** F reaches r delta beyond C's domain; a closed one may start its period later). */
@@ -85,32 +81,17 @@ static bsfit_err target_breaks(const smooth_ctx *x, const bsfit_curve *F, bsfit_
   return BSFIT_OK;
 }
 
-/* Filters C (order r, half-width delta), projects the result on degree q (no knots
-** added) and measures it: k receives F, S and the local deviation. */
+/* Filters C (order r, half-width delta) and measures the filtered curve's distance to C
+** (local mode: an upper bound). */
 static bsfit_err evaluate(smooth_ctx *x, int r, double delta, candidate *k, bsfit_status *st) {
-  bsfit__fview v;
-  bsfit__fspline f;
-  bsfit__breaks b;
   bsfit_err e;
   x->evals++;
   k->order = r;
   k->delta = delta;
   e = bsfit_filter_kernel_curve_delta(x->c, r, delta, &k->F, st);
   if (e != BSFIT_OK) return e;
-  if (target_breaks(x, &k->F, &b) != BSFIT_OK)
-    return bsfit__fail(st, BSFIT_ENOMEM, "out of memory for break points");
-  v.p = k->F.degree;
-  v.n = k->F.n;
-  v.d = (size_t)k->F.dim;
-  v.U = k->F.knots;
-  v.P = k->F.ctrl;
-  e = bsfit__project_coarse(&v, k->F.periodic, x->q, &b, x->al, &f, st);
-  if (e == BSFIT_OK) e = bsfit__fspline_to_curve(&f, x->c->dim, x->c->periodic, x->al, &k->S, st);
-  if (e == BSFIT_OK)
-    e = bsfit__curve_distance(&k->S, x->c, SEARCH_SAMPLES, BSFIT__DIST_LOCAL, &b, NULL, x->al,
-                              &k->dev, st);
-  bsfit__breaks_free(x->al, &b);
-  return e;
+  return bsfit__curve_distance(&k->F, x->c, SEARCH_SAMPLES, BSFIT__DIST_LOCAL, NULL, NULL, x->al,
+                               &k->dev, st);
 }
 
 /* {====================================================================
@@ -123,92 +104,62 @@ static double clampd(double v, double lo, double hi) { return v < lo ? lo : (v >
 static int fatal(bsfit_err e) { return e == BSFIT_ENOMEM || e == BSFIT_EINTR; }
 
 
-/* The search's state: the bracket [lo, hi] of the largest delta whose deviation is
-** within the target (hi < 0: no infeasible delta yet), with the deviations there, and
-** the last two evaluations (for the local growth rate). */
-typedef struct bracket {
-  double target, lo, dlo, hi, dhi, prev, dprev, cur, dcur;
-} bracket;
-
-/* The growth exponent alpha of dev ~ delta^alpha between two evaluations (2 when they
-** cannot tell: the smooth-curve rate), kept in [0.5, 4]. */
-static double growth(double d0, double v0, double d1, double v1) {
-  double a;
-  if (!(d0 > 0 && d1 > 0 && v0 > 0 && v1 > 0) || d0 == d1) return 2.0;
-  a = log(v1 / v0) / log(d1 / d0);
-  return !(a == a) ? 2.0 : clampd(a, 0.5, 4.0);
-}
-
-/* The next delta: in the model dev ~ delta^alpha, where the deviation meets the target
-** (a hair under), kept inside the bracket, or stepping out of it towards the target. */
-static double next_delta(const bracket *B, double dmax) {
-  double a, g, want = 0.995 * B->target;
-  if (B->hi > 0 && B->lo > 0) {
-    a = growth(B->lo, B->dlo, B->hi, B->dhi);
-    g = B->lo * pow(want / B->dlo, 1.0 / a);
-    return clampd(g, B->lo + 0.1 * (B->hi - B->lo), B->hi - 0.1 * (B->hi - B->lo));
+/* Evaluates order r at d; keeps the candidate in best when it is feasible and wider than
+** best. *dev receives its distance (4 tol when d is not usable). */
+static bsfit_err try_delta(smooth_ctx *x, int r, double d, candidate *best, double *dev,
+                           bsfit_status *st) {
+  candidate k;
+  bsfit_err e;
+  cand_init(&k);
+  e = evaluate(x, r, d, &k, st);
+  if (e != BSFIT_OK && fatal(e)) {
+    cand_free(&k);
+    return e;
   }
-  a = growth(B->prev, B->dprev, B->cur, B->dcur);
-  g = B->dcur > 0 ? B->cur * pow(want / B->dcur, 1.0 / a) : 4.0 * B->cur;
-  if (B->hi < 0) return fmin(dmax, clampd(g, 1.1 * B->cur, 4.0 * B->cur));
-  return clampd(g, B->cur / 16, 0.9 * B->cur);
-}
-
-/* Records the evaluation at d (dev, or not usable) in B; returns non-zero when the
-** search is done: the deviation at lo is within 3% of the target, the bracket within
-** SEARCH_RATIO, or the widest window allowed is feasible. */
-static int record(bracket *B, double d, double dev, int ok, double dmax) {
-  B->prev = B->cur;
-  B->dprev = B->dcur;
-  B->cur = d;
-  B->dcur = ok ? dev : 4.0 * B->target; /* unusable: step back as from a far miss */
-  if (ok && dev <= B->target) {
-    B->lo = d;
-    B->dlo = dev;
-  } else {
-    B->hi = d;
-    B->dhi = B->dcur;
+  *dev = e == BSFIT_OK ? k.dev : 4.0 * x->tol;
+  if (e == BSFIT_OK && k.dev <= SEARCH_MARGIN * x->tol && (best->order != r || d > best->delta)) {
+    cand_free(best);
+    *best = k; /* best owns k's curve now */
+    return BSFIT_OK;
   }
-  return (B->lo > 0 && B->dlo >= 0.97 * B->target) || B->lo >= dmax ||
-         (B->hi > 0 && B->lo > 0 && B->hi <= B->lo * SEARCH_RATIO);
+  cand_free(&k);
+  return BSFIT_OK;
 }
 
-/* The largest feasible delta of order r, into best (left alone when none is found). */
+/* The widest feasible delta of order r, into best (left alone when none is found). The
+** distance does not grow monotonically with delta: below the width where the filter's
+** shrinking of the shape dominates, it follows the noise it removes, up and down. So the
+** search steps up by SEARCH_STEP from the first feasible width until the distance is
+** clearly beyond tol (SEARCH_BEYOND times), keeps the widest feasible width seen, and
+** bisects (in log delta) between it and the next width tried. */
 static bsfit_err search_order(smooth_ctx *x, int r, candidate *best, bsfit_status *st) {
   size_t spans = x->base->n - 1;
-  double h = (x->b - x->a) / (double)spans, dmax = (x->b - x->a) / (2.0 * r);
+  double h = (x->b - x->a) / (double)spans, dmax = (x->b - x->a) / (2.0 * r), dev = 0, hi;
   /* same kernel variance r delta^2 / 3, same deviation to first order: the previous
   ** order's answer scaled is a close first guess */
-  double d0 = x->last_order ? x->last_delta * sqrt((double)x->last_order / r) : 0.5 * h;
-  double d = fmin(d0, dmax);
-  bracket B;
-  int i, done = 0;
-  memset(&B, 0, sizeof B);
-  B.target = SEARCH_MARGIN * x->tol;
-  B.hi = -1;
-  for (i = 0; i < SEARCH_EVALS && !done; i++) {
-    candidate k;
-    bsfit_err e;
-    cand_init(&k);
-    e = evaluate(x, r, d, &k, st);
-    if (e != BSFIT_OK && fatal(e)) {
-      cand_free(&k);
-      return e;
-    }
-    done = record(&B, d, k.dev, e == BSFIT_OK, dmax);
-    if (B.lo == d) {
-      cand_free(best);
-      *best = k; /* best owns k's curves now */
-    } else {
-      cand_free(&k);
-    }
-    d = next_delta(&B, dmax);
-    if (B.lo == 0 && d < 1e-6 * h) break;
+  double d = fmin(x->last_order ? x->last_delta * sqrt((double)x->last_order / r) : 0.5 * h, dmax);
+  bsfit_err e;
+  int i;
+  for (i = 0; i < SEARCH_DOWN; i++) { /* down to a feasible width */
+    if ((e = try_delta(x, r, d, best, &dev, st)) != BSFIT_OK) return e;
+    if (best->order == r) break;
+    d /= SEARCH_STEP;
   }
   if (best->order != r) return BSFIT_OK;
+  for (hi = -1; dev <= SEARCH_BEYOND * x->tol && d < dmax;) { /* up while it may come back */
+    d = fmin(d * SEARCH_STEP, dmax);
+    if ((e = try_delta(x, r, d, best, &dev, st)) != BSFIT_OK) return e;
+    if (best->delta == d) hi = -1;
+    else if (hi < 0) hi = d;
+  }
+  for (i = 0; i < SEARCH_BISECT && hi > 0; i++) { /* between the widest feasible and hi */
+    double mid = sqrt(best->delta * hi), lo = best->delta;
+    if ((e = try_delta(x, r, mid, best, &dev, st)) != BSFIT_OK) return e;
+    if (best->delta == lo) hi = mid;
+  }
   x->last_order = r;
   x->last_delta = best->delta;
-  return bsfit_curve_bending_energy(&best->S, x->samples, &best->energy, st);
+  return bsfit_curve_bending_energy(&best->F, x->samples, &best->energy, st);
 }
 
 /* }==================================================================== */
@@ -284,7 +235,7 @@ static bsfit_err final_reduce(smooth_ctx *x, const candidate *k, bsfit_curve *re
   r.tol = x->tol;
   r.per_span = FINAL_SAMPLES;
   r.measure = x->c;
-  r.max_added = x->base->n / 4 + 8;
+  r.max_added = x->base->n / 2 + 8;
   if (target_breaks(x, &k->F, &b) != BSFIT_OK)
     return bsfit__fail(st, BSFIT_ENOMEM, "out of memory for break points");
   e = bsfit__reduce_loop(&k->F, &r, &b, x->al, res, rr, st);
@@ -307,15 +258,19 @@ static void restore_domain(const smooth_ctx *x, bsfit_curve *res) {
 }
 
 /* The winner made final; when the dense true distance shows the filter itself beyond
-** tol somewhere the search's samples missed, its width shrinks and it is tried again. */
+** tol somewhere the search's samples missed, its width shrinks (by the delta^2 model
+** first, then geometrically: near the noise floor the distance hardly follows delta) and
+** it is tried again. Returns ENOCONV when no try fits. */
 static bsfit_err finish(smooth_ctx *x, candidate *k, bsfit_curve *res,
                         bsfit_smooth_report *rep, bsfit_status *st) {
   bsfit_reduce_report rr;
   bsfit_err e = final_reduce(x, k, res, &rr, st);
   int i;
-  for (i = 0; e == BSFIT_ENOCONV && i < FINAL_TRIES; i++) {
+  for (i = 0; e != BSFIT_OK && !fatal(e) && i < FINAL_TRIES; i++) {
     int r = k->order;
-    double d = k->delta * FINAL_SHRINK;
+    double ratio = i < 2 && e == BSFIT_ENOCONV && rr.max_deviation > x->tol
+                       ? sqrt(0.99 * x->tol / rr.max_deviation) : FINAL_SHRINK;
+    double d = k->delta * clampd(ratio, FINAL_SHRINK, 0.99);
     cand_free(k);
     cand_init(k);
     e = evaluate(x, r, d, k, st);
@@ -391,8 +346,9 @@ bsfit_err bsfit_filter_smooth_curve(const bsfit_curve *c, const bsfit_smooth_opt
   e = smooth_measures(&x, c, &rep->turning_before, &rep->energy_before, st);
   if (e == BSFIT_OK) e = search(&x, o->order, &best, st);
   if (e == BSFIT_OK) {
+    e = BSFIT_ENOCONV;
     if (best.order != 0 && best.energy < rep->energy_before) e = finish(&x, &best, &res, rep, st);
-    else e = unchanged(&x, &res, rep, st);
+    if (e != BSFIT_OK && !fatal(e)) e = unchanged(&x, &res, rep, st);
   }
   if (e == BSFIT_OK) e = smooth_measures(&x, &res, &rep->turning_after, &rep->energy_after, st);
   rep->evaluations = x.evals;
