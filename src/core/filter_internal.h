@@ -76,13 +76,6 @@ bsfit_err bsfit__project(const bsfit__fview *in, const bsfit_curve *rational, in
                          int q, const bsfit__breaks *b, const bsfit_allocator *al,
                          bsfit__fspline *out, bsfit_status *st);
 
-/* bsfit__project with the quadrature on the target's spans only, not split at the
-** input's knots: approximate (nearly exact where the input is smooth across its knots,
-** as a filtered curve is), (r+1) times cheaper after r filter passes. For searches. */
-bsfit_err bsfit__project_coarse(const bsfit__fview *in, int periodic, int q,
-                                const bsfit__breaks *b, const bsfit_allocator *al,
-                                bsfit__fspline *out, bsfit_status *st);
-
 /* f's arrays handed to a validated curve moved into out (f is emptied either way). */
 bsfit_err bsfit__fspline_to_curve(bsfit__fspline *f, int dim, int periodic,
                                   const bsfit_allocator *a, bsfit_curve *out, bsfit_status *st);

@@ -169,7 +169,6 @@ typedef struct proj {
   const bsfit__fview *in;
   const bsfit_curve *rational; /* evaluate through the curve (weights) when not NULL */
   int q, ng;
-  int coarse; /* quadrature on the target's spans only (bsfit__project_coarse) */
   size_t nraw, nt; /* target control points (raw), target knots */
   const double *T;
   double *band, *rhs, *cv; /* (q+1) x nraw lower band, nraw x d column-major, d */
@@ -203,7 +202,6 @@ static void add_span(proj *P, double x0, double x1) {
   for (g = 0; g < (size_t)P->ng; g++) {
     double t = mid + half * P->gx[g], w = half * P->gw[g];
     bsfit_basis_funs(st, t, P->q, P->T, Nt);
-    if (P->coarse) sc = bsfit_knots_find_span(P->in->U, P->in->n, P->in->p, t);
     eval_input(P, sc, t);
     for (j = 0; j <= q; j++) {
       double wj = w * Nt[j];
@@ -218,7 +216,7 @@ static void add_span(proj *P, double x0, double x1) {
 static bsfit_err assemble(proj *P, double a, double b, const bsfit_allocator *al,
                           bsfit_status *st) {
   const double *U = P->in->U, *T = P->T;
-  size_t nu = P->coarse ? 0 : P->in->n + (size_t)P->in->p + 1, i = 0, j = 0, spans = 0;
+  size_t nu = P->in->n + (size_t)P->in->p + 1, i = 0, j = 0, spans = 0;
   double x = a;
   while (x < b) {
     double next = b;
@@ -285,8 +283,8 @@ static int node_count(int q, int p, int rational) {
   return n > MAX_GL ? MAX_GL : n;
 }
 
-static bsfit_err project(const bsfit__fview *in, const bsfit_curve *rational, int periodic,
-                         int q, int coarse, const bsfit__breaks *b, const bsfit_allocator *al,
+bsfit_err bsfit__project(const bsfit__fview *in, const bsfit_curve *rational, int periodic,
+                         int q, const bsfit__breaks *b, const bsfit_allocator *al,
                          bsfit__fspline *out, bsfit_status *st) {
   size_t room = target_knot_room(b, q), nraw, d = in->d, bb, rb;
   double *T = bsfit__alloc(al, room * sizeof(double));
@@ -304,7 +302,6 @@ static bsfit_err project(const bsfit__fview *in, const bsfit_curve *rational, in
   P.rational = rational;
   P.q = q;
   P.ng = node_count(q, in->p, rational != NULL);
-  P.coarse = coarse;
   P.nraw = nraw;
   P.nt = nraw + (size_t)q + 1;
   P.T = T;
@@ -333,18 +330,6 @@ static bsfit_err project(const bsfit__fview *in, const bsfit_curve *rational, in
   bsfit__free(al, P.cv, d * sizeof(double));
   bsfit__free(al, T, room * sizeof(double));
   return e;
-}
-
-bsfit_err bsfit__project(const bsfit__fview *in, const bsfit_curve *rational, int periodic,
-                         int q, const bsfit__breaks *b, const bsfit_allocator *al,
-                         bsfit__fspline *out, bsfit_status *st) {
-  return project(in, rational, periodic, q, 0, b, al, out, st);
-}
-
-bsfit_err bsfit__project_coarse(const bsfit__fview *in, int periodic, int q,
-                                const bsfit__breaks *b, const bsfit_allocator *al,
-                                bsfit__fspline *out, bsfit_status *st) {
-  return project(in, NULL, periodic, q, 1, b, al, out, st);
 }
 
 /* }==================================================================== */
