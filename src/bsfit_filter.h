@@ -278,7 +278,8 @@ typedef struct bsfit_smooth_report {
 ** order (given, or 1..4) the largest half-width whose filtered curve, projected on degree
 ** q on c's break points, stays within tol; the order whose result has the least bending
 ** energy wins; knots are added if the true distance needs them (docs/filtering.md).
-** Open results keep c's domain [a, b] (affine change of parameter), closed ones its period.
+** Open results keep c's domain [a, b] (the filter's widened ends are not projected),
+** closed ones its period.
 ** @param[in]  c    a valid polynomial curve of dimension 2..4.
 ** @param[out] out  the result (freed first; may be c itself).
 ** @param[out] rep  what was done, or NULL.
@@ -288,6 +289,24 @@ typedef struct bsfit_smooth_report {
 BSFIT_API bsfit_err bsfit_filter_smooth_curve(const bsfit_curve *c, const bsfit_smooth_opts *o,
                                               bsfit_curve *out, bsfit_smooth_report *rep,
                                               bsfit_status *st);
+
+/** Smoothing of a surface to a tolerance (docs/filtering.md): kernel filters of one order
+** in both directions (given, or 1..4), half-widths proportional to the mean knot spacing
+** of each direction, the widest within tol; each result projected (L2, tensor product) on
+** degree q in both directions on the surface's own break points; the order with the least
+** thin-plate energy (the sampled integral of |S_uu|^2 + 2 |S_uv|^2 + |S_vv|^2 over the
+** parameter domain) wins. The distance is bounded by the largest difference at equal
+** parameters on a grid (4 samples per knot span each way; the input extended as constant
+** beyond its edges): an upper bound of the distance between the surfaces. No knots are
+** added. The result keeps the domain of s. Report: changed, order, delta (the u
+** half-width; along v it is in the same proportion to the v spacing), max_deviation
+** (the bound), energy_before/after (thin plate), evaluations; turning is 0. When nothing
+** smoother is within tol, out is a copy of s and changed is 0.
+** @return BSFIT_OK; BSFIT_EINVAL (NULL, rational, tol <= 0, order out of range);
+**         BSFIT_ENONFINITE (tol); BSFIT_EDEGREE; BSFIT_EINTR; BSFIT_ENOMEM. */
+BSFIT_API bsfit_err bsfit_filter_smooth_surface(const bsfit_surface *s,
+                                                const bsfit_smooth_opts *o, bsfit_surface *out,
+                                                bsfit_smooth_report *rep, bsfit_status *st);
 
 /* }==================================================================== */
 

@@ -60,8 +60,9 @@ static void cand_init(candidate *k) {
 
 static void cand_free(candidate *k) { bsfit_curve_free(&k->F); }
 
-/* The break points of the target for the filtered F: C's, and F's domain ends (an open
-** F reaches r delta beyond C's domain; a closed one may start its period later). */
+/* The break points of the target for the filtered F: C's (an open F is projected over
+** C's domain only: its widened ends, where it turns into the constant extension, would
+** make the projection ring into the interior; a closed F may start its period later). */
 static bsfit_err target_breaks(const smooth_ctx *x, const bsfit_curve *F, bsfit__breaks *b) {
   const bsfit__breaks *B = x->base;
   double lo, hi, T = x->b - x->a, eps = 1e-9 * T;
@@ -69,7 +70,8 @@ static bsfit_err target_breaks(const smooth_ctx *x, const bsfit_curve *F, bsfit_
   int j;
   memset(b, 0, sizeof *b);
   if (bsfit__breaks_reserve(x->al, b, 2 * B->n + 4) != BSFIT_OK) return BSFIT_ENOMEM;
-  bsfit_curve_domain(F, &lo, &hi);
+  if (F->periodic) bsfit_curve_domain(F, &lo, &hi);
+  else lo = x->a, hi = x->b;
   b->x[b->n++] = lo;
   for (j = 0; j < (F->periodic ? 2 : 1); j++)
     for (i = 0; i < B->n; i++) {
@@ -243,20 +245,6 @@ static bsfit_err final_reduce(smooth_ctx *x, const candidate *k, bsfit_curve *re
   return e;
 }
 
-/* An open result is given C's domain back (an affine change of parameter). */
-static void restore_domain(const smooth_ctx *x, bsfit_curve *res) {
-  double lo, hi, s;
-  size_t i, nk = res->n + (size_t)res->degree + 1;
-  if (res->periodic) return;
-  bsfit_curve_domain(res, &lo, &hi);
-  s = (x->b - x->a) / (hi - lo);
-  for (i = 0; i < nk; i++) res->knots[i] = x->a + (res->knots[i] - lo) * s;
-  for (i = 0; i <= (size_t)res->degree; i++) {
-    res->knots[i] = x->a; /* exactly the clamped ends */
-    res->knots[nk - 1 - i] = x->b;
-  }
-}
-
 /* The winner made final; when the dense true distance shows the filter itself beyond
 ** tol somewhere the search's samples missed, its width shrinks (by the delta^2 model
 ** first, then geometrically: near the noise floor the distance hardly follows delta) and
@@ -282,7 +270,6 @@ static bsfit_err finish(smooth_ctx *x, candidate *k, bsfit_curve *res,
   rep->delta = k->delta;
   rep->max_deviation = rr.max_deviation;
   rep->knots_added = rr.knots_added;
-  restore_domain(x, res);
   return BSFIT_OK;
 }
 

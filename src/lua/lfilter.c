@@ -280,30 +280,53 @@ static void push_smooth_report(lua_State *L, const bsfit_smooth_report *r) {
   set_integer(L, "evaluations", r->evaluations);
 }
 
-/* bs.filter.smooth(C, {tol = t [, degree =] [, order =]}) -> curve, report */
-static int filter_smooth(lua_State *L) {
+/* The options of bs.filter.smooth at 2 into o. */
+static void smooth_opts(lua_State *L, bsfit_smooth_opts *o) {
   static const char *const names[] = {"tol", "degree", "order", NULL};
-  bsfit_curve *c = bsfit__lua_checkcurve(L, 1);
+  lua_Integer q;
+  luaL_checktype(L, 2, LUA_TTABLE);
+  bsfit__lua_check_options(L, 2, names);
+  memset(o, 0, sizeof *o);
+  o->tol = req_number(L, 2, "tol");
+  if (!(o->tol > 0) || !isfinite(o->tol))
+    luaL_argerror(L, 2, lua_pushfstring(L, "field 'tol' must be a finite number > 0, got %f",
+                                        o->tol));
+  q = opt_integer(L, 2, "degree", 3);
+  luaL_argcheck(L, q >= 1 && q <= BSFIT_MAX_DEGREE, 2, "field 'degree' must be in 1..30");
+  o->degree = (int)q;
+  o->order = bsfit__lua_field(L, 2, "order") == LUA_TNIL ? 0 : opt_order(L, 2, "order", 1);
+  lua_settop(L, 2);
+}
+
+/* bs.filter.smooth(S, {tol = t [, degree =] [, order =]}) -> surface, report */
+static int smooth_surface(lua_State *L) {
+  bsfit_surface *s = bsfit__lua_checksurface(L, 1);
+  bsfit_smooth_opts o;
+  bsfit_smooth_report rep;
+  bsfit_allocator a;
+  bsfit_surface_ud *ud;
+  bsfit_status st;
+  bsfit_err e;
+  smooth_opts(L, &o);
+  ud = bsfit__lua_newsurface(L, &a);
+  e = bsfit_filter_smooth_surface(s, &o, &ud->s, &rep, &st);
+  if (e != BSFIT_OK) return bsfit__lua_result(L, e, &st, 0, 2);
+  push_smooth_report(L, &rep);
+  return 2;
+}
+
+/* bs.filter.smooth(C | S, {tol = t [, degree =] [, order =]}) -> curve | surface, report */
+static int filter_smooth(lua_State *L) {
+  bsfit_curve *c;
   bsfit_smooth_opts o;
   bsfit_smooth_report rep;
   bsfit_allocator a;
   bsfit_curve_ud *ud;
   bsfit_status st;
   bsfit_err e;
-  lua_Integer q, r;
-  luaL_checktype(L, 2, LUA_TTABLE);
-  bsfit__lua_check_options(L, 2, names);
-  memset(&o, 0, sizeof o);
-  o.tol = req_number(L, 2, "tol");
-  if (!(o.tol > 0) || !isfinite(o.tol))
-    return luaL_argerror(L, 2, lua_pushfstring(L, "field 'tol' must be a finite number > 0, "
-                                                  "got %f", o.tol));
-  q = opt_integer(L, 2, "degree", 3);
-  luaL_argcheck(L, q >= 1 && q <= BSFIT_MAX_DEGREE, 2, "field 'degree' must be in 1..30");
-  r = bsfit__lua_field(L, 2, "order") == LUA_TNIL ? 0 : opt_order(L, 2, "order", 1);
-  lua_settop(L, 2);
-  o.degree = (int)q;
-  o.order = (int)r;
+  if (luaL_testudata(L, 1, BSFIT_SURFACE_T)) return smooth_surface(L);
+  c = bsfit__lua_checkcurve(L, 1);
+  smooth_opts(L, &o);
   ud = bsfit__lua_newcurve(L, &a);
   e = bsfit_filter_smooth_curve(c, &o, &ud->c, &rep, &st);
   if (e != BSFIT_OK) return bsfit__lua_result(L, e, &st, 0, 2);
