@@ -267,3 +267,27 @@ T.test("smooth: a noisy surface comes back bicubic, within tol, with less thin-p
   T.raises({ match = "'tol'" }, bs.filter.smooth, S, { tol = -1 })
   T.raises({ match = "'order'" }, bs.filter.smooth, S, { tol = 1, order = 0 })
 end)
+
+T.test("smooth: open sections keep their domain and stay within tol", function()
+  for seed = 1, 3 do
+    local pts = {}
+    for i = 0, 299 do
+      local t = 1.5 * math.pi * i / 299
+      pts[#pts + 1] = { 2 * math.cos(t), math.sin(t) }
+    end
+    local C = periodic.run(synth.noisy(pts, 0.004 * seed, 20 + seed), { closed = false })
+    T.ok(not C:is_periodic())
+    local tol = 4 * 0.004 * seed
+    local S, rep = bs.filter.smooth(C, { tol = tol })
+    T.ok(S, tostring(rep))
+    T.eq(S:degree(), 3)
+    T.ok(not S:is_periodic())
+    local a, b = C:domain()
+    local c, d = S:domain()
+    T.eq(c, a)
+    T.eq(d, b)
+    T.ok(rep.max_deviation <= tol)
+    T.ok(bs.filter.distance(S, C, 32) <= 1.01 * tol, "the true distance, denser")
+    T.ok(not rep.changed or S:bending_energy(E) < C:bending_energy(E))
+  end
+end)
