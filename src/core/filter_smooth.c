@@ -29,7 +29,8 @@
 #define SEARCH_SAMPLES 2  /* local distance: samples per knot span */
 #define FINAL_SAMPLES 16  /* true distance of the result: samples per knot span */
 #define ENERGY_SAMPLES 8  /* energy and turning: samples per knot span of C (>= 256) */
-#define SEARCH_MARGIN 0.995 /* the filter keeps this much of tol; the rest goes to the degree reduction */
+/* the filter keeps this much of tol; the rest goes to the degree reduction */
+#define SEARCH_MARGIN 0.995
 #define FINAL_TRIES 8     /* the winner's width shrinks at most this often ... */
 #define FINAL_SHRINK 0.7  /* ... by this factor at least, when the true distance exceeds tol */
 

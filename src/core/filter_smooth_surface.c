@@ -4,15 +4,16 @@
 ** filter_smooth.c: kernel filters of one order r in both directions, half-widths
 ** proportional to the mean knot spacing in each direction (delta_u = w h_u,
 ** delta_v = w h_v), the widest w kept within tol, brought back to degree q in both
-** directions by the tensor L2 projection (the curve projection along u with whole rows
-** of the net as points, then along v), the order with least thin-plate energy
-** (the integral of |S_uu|^2 + 2 |S_uv|^2 + |S_vv|^2, sampled) relative to the input's
-** kept, both measured over the interior no kernel support reaches from an edge (near the
-** edges the end rule, the surface extended as constant, shapes the filter). The distance to the input is bounded by the largest difference at equal
+** directions over the input's domain by the tensor L2 projection (the curve projection
+** along u with whole rows of the net as points, then along v), the order with least
+** thin-plate energy (the integral of |S_uu|^2 + 2 |S_uv|^2 + |S_vv|^2, sampled) relative
+** to the input's kept, both measured over the interior no kernel support reaches from an
+** edge (near the edges the end rule, the surface extended as constant, shapes the
+** filter). The distance to the input is bounded by the largest difference at equal
 ** parameters on a grid (the input extended as constant beyond its edges, as the filter
 ** sees it): every point of either surface lies that close to the other, so this upper
 ** bound stands in for the closest-point distance. No knots are added: where the
-** projection on the input's break points misses tol, the width shrinks.
+** projection on the input's break points misses tol, the width is narrower.
 */
 #include "filter_internal.h"
 
@@ -82,7 +83,8 @@ static double thin_plate(const sctx *x, const bsfit_surface *A, double mu, doubl
       double v = va + (vb - va) * ((double)j + 0.5) / (double)nv;
       bsfit_surface_derivs(A, u, v, 2, D, NULL);
       for (k = 0; k < d; k++) {
-        double suu = D[(2 * 3 + 0) * d + k], suv = D[(1 * 3 + 1) * d + k], svv = D[(0 * 3 + 2) * d + k];
+        /* D holds d^(a+b) S / du^a dv^b at (a * 3 + b) * d */
+        double suu = D[6 * d + k], suv = D[4 * d + k], svv = D[2 * d + k];
         e += (suu * suu + 2.0 * suv * suv + svv * svv) * cell;
       }
     }

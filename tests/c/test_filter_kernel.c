@@ -487,7 +487,8 @@ static void test_surface_equals_box_passes(void **state) {
       assert_int_equal(bsfit_surface_copy(&s, &B, NULL, &st), BSFIT_OK);
       if (uniform) {
         assert_int_equal(bsfit_filter_kernel_surface(&s, r, r, 2, 1, &F, &st), BSFIT_OK);
-        for (i = 0; i < r; i++) assert_int_equal(bsfit_filter_box_surface(&B, 2, 1, &B, &st), BSFIT_OK);
+        for (i = 0; i < r; i++)
+          assert_int_equal(bsfit_filter_box_surface(&B, 2, 1, &B, &st), BSFIT_OK);
       } else {
         assert_int_equal(bsfit_filter_kernel_surface_delta(&s, r, r, du, dv, &F, &st), BSFIT_OK);
         for (i = 0; i < r; i++)

@@ -323,7 +323,8 @@ static void test_deviation_is_true_and_within_tol(void **state) {
     bsfit_curve_init(&F);
     bsfit_curve_init(&R);
     assert_int_equal(bsfit_filter_kernel_curve_delta(&base, 2, rng_range(&rng, 0.01, 0.05) * (b - a),
-                                                     &F, &st), BSFIT_OK);
+                                                     &F, &st),
+                     BSFIT_OK);
     memset(&o, 0, sizeof o);
     o.tol = tols[c % 3];
     assert_int_equal(bsfit_filter_reduce_curve(&F, &o, &R, &r, &st), BSFIT_OK);

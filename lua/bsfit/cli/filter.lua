@@ -113,10 +113,12 @@ function M.main(args)
     report.must_write(o.out, F:to_json())
     report.must_write(o.out:gsub("%.json$", "") .. ".svg", picture(C, F))
     if rep then
-      print(("%s: %s, degree %d -> %d, max distance %.6g (tol %.6g), total turning %.6g -> %.6g, bending energy %.6g -> %.6g")
-        :format(o.out, rep.changed and ("kernel order %d, delta %.6g, %d knots added")
-                  :format(rep.order, rep.delta, rep.knots_added) or "nothing smoother within tol: unchanged",
-                C:degree(), F:degree(), rep.max_deviation, o.tol, rep.turning_before,
+      local what = rep.changed and ("kernel order %d, delta %.6g, %d knots added")
+                                     :format(rep.order, rep.delta, rep.knots_added)
+                   or "nothing smoother within tol: unchanged"
+      print(("%s: %s, degree %d -> %d, max distance %.6g (tol %.6g), total turning %.6g -> %.6g, "
+             .. "bending energy %.6g -> %.6g")
+        :format(o.out, what, C:degree(), F:degree(), rep.max_deviation, o.tol, rep.turning_before,
                 rep.turning_after, rep.energy_before, rep.energy_after))
       return
     end

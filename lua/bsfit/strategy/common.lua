@@ -508,8 +508,10 @@ function M.smooth_curve(ctx, spec)
     ctx.curve = S
     return rep
   end
-  if type(spec) ~= "table" or (spec.delta == nil and (math.type(spec.k) ~= "integer" or spec.k < 1)) then
-    error("bad argument #2 to 'run' (option 'smooth' must be an integer k >= 1, {k = k}, {delta = d} or {tol = t})", 0)
+  if type(spec) ~= "table"
+     or (spec.delta == nil and (math.type(spec.k) ~= "integer" or spec.k < 1)) then
+    error("bad argument #2 to 'run' (option 'smooth' must be an integer k >= 1, {k = k}, "
+          .. "{delta = d} or {tol = t})", 0)
   end
   local S
   if spec.delta ~= nil then
