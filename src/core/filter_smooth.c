@@ -88,6 +88,7 @@ static bsfit_err target_breaks(const smooth_ctx *x, const bsfit_curve *F, bsfit_
 ** (local mode: an upper bound). */
 static bsfit_err evaluate(smooth_ctx *x, int r, double delta, candidate *k, bsfit_status *st) {
   bsfit_err e;
+  if (bsfit__interrupted(x->al)) return bsfit__fail(st, BSFIT_EINTR, "smoothing interrupted");
   x->evals++;
   k->order = r;
   k->delta = delta;

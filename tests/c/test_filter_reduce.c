@@ -494,6 +494,29 @@ static void test_bad_input(void **state) {
   bsfit_curve_free(&c);
 }
 
+/* An interrupted host gets EINTR from reduce and smooth, and its output is untouched. */
+static void test_interrupt(void **state) {
+  test_rng rng = {0x7265640007};
+  bsfit_curve c, R;
+  bsfit_reduce_opts o;
+  bsfit_smooth_opts so;
+  bsfit_status st;
+  volatile int stop = 1;
+  (void)state;
+  make_section(&rng, 1, 3, 30, 0.05, &c);
+  bsfit_curve_init(&R);
+  c.alloc.interrupt = &stop;
+  memset(&o, 0, sizeof o);
+  o.tol = 1e-3;
+  expect_error(bsfit_filter_reduce_curve(&c, &o, &R, NULL, &st), BSFIT_EINTR, &st);
+  memset(&so, 0, sizeof so);
+  so.tol = 1e-2;
+  expect_error(bsfit_filter_smooth_curve(&c, &so, &R, NULL, &st), BSFIT_EINTR, &st);
+  assert_null(R.ctrl);
+  c.alloc.interrupt = NULL;
+  bsfit_curve_free(&c);
+}
+
 /* }==================================================================== */
 
 int main(void) {
@@ -505,6 +528,7 @@ int main(void) {
     cmocka_unit_test(test_closed_stays_closed_and_smooth),
     cmocka_unit_test(test_rational_circle),
     cmocka_unit_test(test_bad_input),
+    cmocka_unit_test(test_interrupt),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
