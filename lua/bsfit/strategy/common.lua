@@ -465,16 +465,9 @@ function M.run(strategy, P, opts)
   return ctx.curve, (strategy.report or M.report)(ctx)
 end
 
--- The smoothing step every strategy accepts (SPEC 3): opts.smooth = k (or {k = k}) box
--- filters the fitted curve over k knot spans (the moving average of k control points
--- on uniform knots; the exact filter of the same width, k times the mean span, on any
--- other knots), {delta = d} over [t - d, t + d]. The curve becomes one degree higher.
--- {tol = t [, order = r] [, degree = q]} smooths to a tolerance instead
--- (bs.filter.smooth, docs/filtering.md): the smoothest kernel filter whose result,
--- brought back to degree q (default 3), stays within t of the fit; the report then also
--- gives the order and width chosen, the knots added and whether anything changed.
--- Returns what it changed: the maximum deviation it introduced, and the total turning
--- and bending energy before and after.
+-- The tolerance form of the smoothing step (M.smooth_curve): checks spec, smooths C by
+-- bs.filter.smooth; returns the curve and the report of M.smooth_curve with the order,
+-- width, knots added and whether anything changed.
 local function smooth_to_tol(C, spec)
   local bad = "bad argument #2 to 'run' (option 'smooth': %s)"
   local tol = spec.tol
@@ -500,6 +493,16 @@ local function smooth_to_tol(C, spec)
               degree = S:degree() }
 end
 
+-- The smoothing step every strategy accepts (SPEC 3): opts.smooth = k (or {k = k}) box
+-- filters the fitted curve over k knot spans (the moving average of k control points
+-- on uniform knots; the exact filter of the same width, k times the mean span, on any
+-- other knots), {delta = d} over [t - d, t + d]. The curve becomes one degree higher.
+-- {tol = t [, order = r] [, degree = q]} smooths to a tolerance instead
+-- (bs.filter.smooth, docs/filtering.md): the smoothest kernel filter whose result,
+-- brought back to degree q (default 3), stays within t of the fit; the report then also
+-- gives the order and width chosen, the knots added and whether anything changed.
+-- Returns what it changed: the maximum deviation it introduced, and the total turning
+-- and bending energy before and after.
 function M.smooth_curve(ctx, spec)
   local C = ctx.curve
   if math.type(spec) == "integer" then spec = { k = spec } end
