@@ -6,7 +6,7 @@
 ** whose normal equations G x = B have the (banded) Gram matrix G_ij = int N_i N_j of the
 ** degree-q basis and B_i = int N_i C. Both are computed exactly by Gauss-Legendre
 ** quadrature on every span of the merged break points of S and C (the integrands are
-** polynomials of degree <= 2q and q + p there); G is solved by banded Cholesky, or for
+** polynomials of degree 2q and q + p there); G is solved by banded Cholesky, or for
 ** a closed curve by the cyclic block elimination of the periodic fitter. Never dense.
 ** Where the result is farther than tol from C (a true distance, filter_distance.c: the
 ** cheap local measure first, the global one to confirm) a knot is inserted in the middle
@@ -278,9 +278,10 @@ static bsfit_err solve_open(proj *P, double *ctrl, bsfit_status *st) {
   return BSFIT_OK;
 }
 
-/* Number of Gauss-Legendre nodes exact for the degree q + p integrands. */
+/* Number of Gauss-Legendre nodes exact for the integrands: N_i N_j (degree 2q) and
+** N_i C (degree q + p). */
 static int node_count(int q, int p, int rational) {
-  int n = (q + p) / 2 + 1 + (rational ? RATIONAL_EXTRA : 0);
+  int n = (q + (p > q ? p : q)) / 2 + 1 + (rational ? RATIONAL_EXTRA : 0);
   return n > MAX_GL ? MAX_GL : n;
 }
 

@@ -140,6 +140,34 @@ static void test_reproduces_elevated_curves(void **state) {
         }
 }
 
+/* A curve of lower degree p < q lies in the target space too: reproduced (the Gram
+** matrix needs the 2q-degree rule then, the mixed one only q + p: a polyline raised to
+** a cubic with C^0 knots once came back ENOTSPD). */
+static void test_reproduces_lower_degrees(void **state) {
+  test_rng rng = {0x7265640008};
+  int p, q, closed;
+  (void)state;
+  for (closed = 0; closed <= 1; closed++)
+    for (p = 1; p <= 3; p++)
+      for (q = p + 1; q <= 5; q++) {
+        bsfit_curve c, R;
+        bsfit_reduce_opts o;
+        bsfit_reduce_report r;
+        bsfit_status st;
+        make_curve(&rng, closed, p, (size_t)p + 5 + (size_t)q, 2, &c);
+        bsfit_curve_init(&R);
+        memset(&o, 0, sizeof o);
+        o.degree = q;
+        o.tol = 1e-9;
+        assert_int_equal(bsfit_filter_reduce_curve(&c, &o, &R, &r, &st), BSFIT_OK);
+        assert_int_equal(R.degree, q);
+        assert_int_equal((int)r.knots_added, 0);
+        check_same_curve(&R, &c, 1e-12);
+        bsfit_curve_free(&c);
+        bsfit_curve_free(&R);
+      }
+}
+
 /* }==================================================================== */
 
 /* {====================================================================
@@ -522,6 +550,7 @@ static void test_interrupt(void **state) {
 int main(void) {
   const struct CMUnitTest tests[] = {
     cmocka_unit_test(test_reproduces_elevated_curves),
+    cmocka_unit_test(test_reproduces_lower_degrees),
     cmocka_unit_test(test_projection_is_least_squares),
     cmocka_unit_test(test_deviation_is_true_and_within_tol),
     cmocka_unit_test(test_distance_is_true),
