@@ -172,4 +172,150 @@ BSFIT_API bsfit_err bsfit_curve_max_deviation(const bsfit_curve *a, const bsfit_
 
 /* }==================================================================== */
 
+/* {====================================================================
+** Kernel filters (r box passes), reduction to a chosen degree, smoothing to a
+** tolerance (docs/filtering.md)
+** ===================================================================== */
+
+/** Kernel filter of order r: r passes of the box filter of half-width delta, which is
+** the convolution of C_ext (the curve extended by its end control points, see the file
+** comment) with the cardinal B-spline kernel of degree r - 1, support [-r delta, r delta].
+** This function is the uniform-knot form: each pass is the moving average of k control
+** points (2 delta = k * spacing), so the control points get the r-fold moving average,
+** B-spline-weighted. Result: degree p + r; open curves over [L - r delta, R + r delta],
+** closed curves periodic. Cost O(r (n + k)).
+** @param[in]  c      a valid polynomial curve whose knot spans are all equal.
+** @param[in]  order  r >= 1, p + r <= BSFIT_MAX_DEGREE.
+** @param[in]  k      window of each pass in knot spans, as bsfit_filter_box_curve.
+** @param[out] out    the filtered curve (freed first; may be c itself).
+** @return BSFIT_OK; BSFIT_EINVAL (order < 1, and every error of bsfit_filter_box_curve);
+**         BSFIT_EDEGREE (p + r too high); BSFIT_EINTR; BSFIT_ENOMEM. On error out is
+**         unchanged. */
+BSFIT_API bsfit_err bsfit_filter_kernel_curve(const bsfit_curve *c, int order, int k,
+                                              bsfit_curve *out, bsfit_status *st);
+
+/** Kernel filter of order r and half-width delta (each pass as
+** bsfit_filter_box_curve_delta) of any polynomial curve: open, closed, non-uniform.
+** @return as bsfit_filter_kernel_curve, with the errors of bsfit_filter_box_curve_delta. */
+BSFIT_API bsfit_err bsfit_filter_kernel_curve_delta(const bsfit_curve *c, int order,
+                                                    double delta, bsfit_curve *out,
+                                                    bsfit_status *st);
+
+/** Kernel filters of a surface: order_u passes along u and order_v along v of the box
+** filter over k (resp. l) knot spans (uniform knots in both directions). Degrees
+** (pu + order_u, pv + order_v).
+** @return BSFIT_OK; BSFIT_EINVAL (an order < 1, and the errors of
+**         bsfit_filter_box_surface); BSFIT_EDEGREE; BSFIT_EINTR; BSFIT_ENOMEM. */
+BSFIT_API bsfit_err bsfit_filter_kernel_surface(const bsfit_surface *s, int order_u,
+                                                int order_v, int k, int l,
+                                                bsfit_surface *out, bsfit_status *st);
+
+/** Kernel filters of any polynomial surface, half-widths delta_u and delta_v.
+** @return as bsfit_filter_kernel_surface, with the errors of
+**         bsfit_filter_box_surface_delta. */
+BSFIT_API bsfit_err bsfit_filter_kernel_surface_delta(const bsfit_surface *s, int order_u,
+                                                      int order_v, double delta_u,
+                                                      double delta_v, bsfit_surface *out,
+                                                      bsfit_status *st);
+
+/** Options of bsfit_filter_reduce_curve. Zero-initialise, then set what you need. */
+typedef struct bsfit_reduce_opts {
+  int degree;           /**< q >= 1; 0 means 3 */
+  double tol;           /**< > 0; INFINITY: the projection on the break points, no knot added */
+  const double *breaks; /**< break points of the result, strictly increasing from the curve's
+                             domain start to its end; NULL: the curve's distinct knots */
+  size_t nbreaks;
+  size_t max_added;     /**< knots that may be added; 0: 10 per break point + 100 */
+  size_t samples;       /**< deviation: samples per knot span of each curve; 0: 16 */
+} bsfit_reduce_opts;
+
+typedef struct bsfit_reduce_report {
+  double max_deviation; /**< distance between result and input (both ways, bsfit_curve_distance) */
+  size_t knots_added;
+  int rounds;           /**< projections computed */
+} bsfit_reduce_report;
+
+/** The best approximation of c of degree q in least squares over the whole domain: the
+** L2 projection onto the splines of degree q on the break points, as smooth at each
+** break as c is there (at most C^{q-1}), clamped (open c) or periodic (closed c). Exact
+** Gauss-Legendre quadrature per span, banded Cholesky (closed: the periodic fitter's
+** cyclic elimination), O(n q^2). While the distance to c exceeds tol, a knot is added in
+** the middle of every span where it does and the projection repeated. A curve that
+** already is of degree <= q on those break points is reproduced. Rational c: projected
+** through more quadrature nodes than a polynomial needs (the integrand is not a
+** polynomial), so the projection is approximate but the deviation reported is measured.
+** @param[out] out  the result (freed first; may be c itself).
+** @param[out] rep  the distance measured and the knots added, or NULL.
+** @return BSFIT_OK; BSFIT_EDEGREE (q out of 1..BSFIT_MAX_DEGREE); BSFIT_ENONFINITE (tol
+**         NaN); BSFIT_EINVAL (NULL argument, tol <= 0, bad break points); BSFIT_ETOOFEW
+**         (too few break points for degree q); BSFIT_ENOCONV (tol not met within
+**         max_added knots); BSFIT_ENOTSPD; BSFIT_EINTR; BSFIT_ENOMEM; any code of
+**         bsfit_curve_validate. On error out is unchanged. */
+BSFIT_API bsfit_err bsfit_filter_reduce_curve(const bsfit_curve *c, const bsfit_reduce_opts *o,
+                                              bsfit_curve *out, bsfit_reduce_report *rep,
+                                              bsfit_status *st);
+
+/** Distance between two curves as point sets: samples (per_span per knot span of each
+** curve, ends included) projected on the other curve by bsfit_curve_closest_many, the
+** largest distance either way (the Hausdorff distance, up to what lies between samples).
+** @return BSFIT_OK; BSFIT_EINVAL (NULL, per_span < 1); BSFIT_EDIM; BSFIT_ENOMEM; any code
+**         of bsfit_curve_validate. */
+BSFIT_API bsfit_err bsfit_curve_distance(const bsfit_curve *a, const bsfit_curve *b,
+                                         size_t per_span, double *out, bsfit_status *st);
+
+/** Options of bsfit_filter_smooth_curve. Zero-initialise, then set tol. */
+typedef struct bsfit_smooth_opts {
+  double tol;  /**< the largest distance allowed between result and input, finite, > 0 */
+  int degree;  /**< degree of the result, >= 1; 0 means 3 */
+  int order;   /**< kernel order; 0: searched over 1..4 */
+} bsfit_smooth_opts;
+
+typedef struct bsfit_smooth_report {
+  int changed;          /**< 0: no filter kept the curve within tol and smoother; out is c at
+                             the degree asked */
+  int order;            /**< kernel order chosen (0 when unchanged) */
+  double delta;         /**< half-width of each pass (0 when unchanged) */
+  double max_deviation; /**< true distance between result and input (bsfit_curve_distance) */
+  size_t knots_added;   /**< knots the reduction added to meet tol */
+  double turning_before, turning_after; /**< bsfit_curve_total_turning */
+  double energy_before, energy_after;   /**< bsfit_curve_bending_energy */
+  int evaluations;      /**< filters tried by the search */
+} bsfit_smooth_report;
+
+/** The smoothest curve of degree q within tol of c that kernel filtering gives: for each
+** order (given, or 1..4) the largest half-width whose filtered curve, projected on degree
+** q on c's break points, stays within tol; the order whose result has the least bending
+** energy wins; knots are added if the true distance needs them (docs/filtering.md).
+** Open results keep c's domain [a, b] (the filter's widened ends are not projected),
+** closed ones its period.
+** @param[in]  c    a valid polynomial curve of dimension 2..4.
+** @param[out] out  the result (freed first; may be c itself).
+** @param[out] rep  what was done, or NULL.
+** @return BSFIT_OK; BSFIT_EINVAL (NULL, rational, tol <= 0, order out of range);
+**         BSFIT_ENONFINITE (tol NaN or infinite); BSFIT_EDIM; BSFIT_EDEGREE; the errors of
+**         bsfit_filter_reduce_curve; BSFIT_EINTR; BSFIT_ENOMEM. On error out is unchanged. */
+BSFIT_API bsfit_err bsfit_filter_smooth_curve(const bsfit_curve *c, const bsfit_smooth_opts *o,
+                                              bsfit_curve *out, bsfit_smooth_report *rep,
+                                              bsfit_status *st);
+
+/** Smoothing of a surface to a tolerance (docs/filtering.md): kernel filters of one order
+** in both directions (given, or 1..4), half-widths proportional to the mean knot spacing
+** of each direction, the widest within tol; each result projected (L2, tensor product) on
+** degree q in both directions on the surface's own break points; the order with the least
+** thin-plate energy (the sampled integral of |S_uu|^2 + 2 |S_uv|^2 + |S_vv|^2 over the
+** parameter domain) wins. The distance is bounded by the largest difference at equal
+** parameters on a grid (4 samples per knot span each way; the input extended as constant
+** beyond its edges): an upper bound of the distance between the surfaces. No knots are
+** added. The result keeps the domain of s. Report: changed, order, delta (the u
+** half-width; along v it is in the same proportion to the v spacing), max_deviation
+** (the bound), energy_before/after (thin plate), evaluations; turning is 0. When nothing
+** smoother is within tol, out is a copy of s and changed is 0.
+** @return BSFIT_OK; BSFIT_EINVAL (NULL, rational, tol <= 0, order out of range);
+**         BSFIT_ENONFINITE (tol); BSFIT_EDEGREE; BSFIT_EINTR; BSFIT_ENOMEM. */
+BSFIT_API bsfit_err bsfit_filter_smooth_surface(const bsfit_surface *s,
+                                                const bsfit_smooth_opts *o, bsfit_surface *out,
+                                                bsfit_smooth_report *rep, bsfit_status *st);
+
+/* }==================================================================== */
+
 #endif /* BSFIT_FILTER_H */

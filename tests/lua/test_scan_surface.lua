@@ -67,11 +67,9 @@ T.test("two legs: no surface, and the reason names the slice", function()
 end)
 
 T.test("the surface's files, and surface = false", function()
-  local sh = synth.shapes.vase()
-  local path = dir .. "/vase2.ply"
-  synth.write_ply(synth.mesh(sh, { around = 64, rings = 40 }), path, "ascii")
+  local path = dir .. "/vase.ply" -- the first test's
   local out = dir .. "/out"
-  local result = pipeline.run(path, { axis = "z", slices = 6, outdir = out })
+  local result = pipeline.run(path, { axis = "z", slices = 12, outdir = out })
   for _, ext in ipairs { "json", "iges", "obj" } do
     local f = io.open(out .. "/surface." .. ext)
     T.ok(f and #f:read("a") > 100, "surface." .. ext .. " written")
@@ -82,7 +80,7 @@ T.test("the surface's files, and surface = false", function()
   local x1, y1, z1 = S:eval(0.3, 0.6)
   local x2, y2, z2 = result.surface:eval(0.3, 0.6)
   T.ok(math.abs(x1 - x2) + math.abs(y1 - y2) + math.abs(z1 - z2) == 0, "JSON round trip exact")
-  local off = pipeline.run(path, { axis = "z", slices = 6, surface = false })
+  local off = pipeline.run(path, { axis = "z", slices = 12, surface = false })
   T.ok(off.surface == nil and off.surface_message == nil, "surface = false: no step")
 end)
 

@@ -3,8 +3,10 @@
 -- curve by the box filter (SPEC 3) and writes the filtered curve as JSON, plus an SVG
 -- of the curve before (blue) and after (vermilion) next to it, with a legend. Prints the maximum
 -- deviation the filter introduced and the total turning and bending energy before
--- and after. Exit status: 0 done, 1 the curve could not be read, filtered or
--- written, 2 usage error.
+-- and after. `--tol T [--order R] [--degree Q]` smooths to a tolerance instead
+-- (bs.filter.smooth: the smoothest kernel filter within T, brought back to degree Q).
+-- Exit status: 0 done, 1 the curve could not be read, filtered or written, 2 usage
+-- error.
 
 local bs = require "bsfit"
 local report = require "bsfit.report"
@@ -13,28 +15,42 @@ local svg = require "bsfit.svg"
 local M = {}
 
 local USAGE = [[
-usage: bsfit filter IN.json (-k K | --delta D) [-o OUT.json]
+usage: bsfit filter IN.json (-k K | --delta D | --tol T [--order R] [--degree Q]) [-o OUT.json]
   -k K        filter over K knot spans: the moving average of K control points on
               uniform knots, the exact box filter of that width on other knots
   --delta D   filter over [t - D, t + D] (any knots)
+  --tol T     the smoothest curve within distance T of the input that kernel
+              filters give (least bending energy), brought back to degree Q
+  --order R   with --tol: the kernel order (R box passes; default: searched, 1..4)
+  --degree Q  with --tol: the degree of the result (default 3)
   -o OUT.json output (default IN.filtered.json); OUT.svg shows before and after
 ]]
+
+-- numeric option values: name -> {key, check, message}
+local VALUES = {
+  ["-k"] = { "k", function(x) return math.type(x) == "integer" and x >= 1 end, "an integer >= 1" },
+  ["--delta"] = { "delta", function(x) return x > 0 and x < math.huge end, "a number > 0" },
+  ["--tol"] = { "tol", function(x) return x > 0 and x < math.huge end, "a number > 0" },
+  ["--order"] = { "order", function(x) return math.type(x) == "integer" and x >= 1 end,
+                  "an integer >= 1" },
+  ["--degree"] = { "degree", function(x) return math.type(x) == "integer" and x >= 1 end,
+                   "an integer >= 1" },
+}
 
 -- the options, or raises a usage message
 function M.parse(args)
   local o, i = {}, 1
   while i <= #args do
     local a = args[i]
-    if a == "-k" or a == "--delta" or a == "-o" then
+    if VALUES[a] or a == "-o" then
       local v = args[i + 1]
       if v == nil then error(a .. " needs a value", 0) end
       if a == "-o" then
         o.out = v
       else
-        local x = tonumber(v)
-        if a == "-k" and (math.type(x) ~= "integer" or x < 1) then error("-k needs an integer >= 1", 0) end
-        if a == "--delta" and not (x and x > 0 and x < math.huge) then error("--delta needs a number > 0", 0) end
-        o[a == "-k" and "k" or "delta"] = x
+        local spec, x = VALUES[a], math.tointeger(tonumber(v)) or tonumber(v)
+        if not (x and spec[2](x)) then error(a .. " needs " .. spec[3], 0) end
+        o[spec[1]] = x
       end
       i = i + 2
     elseif a == "-h" or a == "--help" then
@@ -50,15 +66,22 @@ function M.parse(args)
   end
   if o.help then return o end
   if not o.input then error("no input curve", 0) end
-  if (o.k == nil) == (o.delta == nil) then error("give exactly one of -k and --delta", 0) end
+  local ways = (o.k and 1 or 0) + (o.delta and 1 or 0) + (o.tol and 1 or 0)
+  if ways ~= 1 then error("give exactly one of -k, --delta and --tol", 0) end
+  if (o.order or o.degree) and not o.tol then error("--order and --degree go with --tol", 0) end
   o.out = o.out or (o.input:gsub("%.json$", "") .. ".filtered.json")
   return o
 end
 
--- filters C as asked; returns the filtered curve (raises on failure)
+-- filters C as asked; returns the filtered curve and, with --tol, the smoothing report
+-- (raises on failure)
 function M.filter(C, o)
   local F, msg
-  if o.delta then
+  if o.tol then
+    F, msg = bs.filter.smooth(C, { tol = o.tol, order = o.order, degree = o.degree })
+    if not F then error(msg, 0) end
+    return F, msg
+  elseif o.delta then
     F, msg = bs.filter.box(C, { delta = o.delta })
   elseif C:is_uniform() then
     F, msg = bs.filter.box(C, o.k)
@@ -77,6 +100,7 @@ local function picture(C, F, o)
   return svg.curves {
     title = ("bsfit filter: %s"):format(o.input),
     subtitle = ("%s; max deviation %.3g"):format(
+      o.tol and ("smoothed within tol %g"):format(o.tol) or
       o.delta and ("delta %g"):format(o.delta) or ("k = %d"):format(o.k), C:max_deviation(F)),
     curves = {
       { samples = C:sample(k), closed = C:is_periodic(), class = "before", colour = "#0072b2",
@@ -95,9 +119,19 @@ function M.main(args)
   local done, err = pcall(function()
     local C, msg = bs.curve.read(o.input)
     if not C then error(o.input .. ": " .. tostring(msg), 0) end
-    local F = M.filter(C, o)
+    local F, rep = M.filter(C, o)
     report.must_write(o.out, F:to_json())
     report.must_write(o.out:gsub("%.json$", "") .. ".svg", picture(C, F, o))
+    if rep then
+      local what = rep.changed and ("kernel order %d, delta %.6g, %d knots added")
+                                     :format(rep.order, rep.delta, rep.knots_added)
+                   or "nothing smoother within tol: unchanged"
+      print(("%s: %s, degree %d -> %d, max distance %.6g (tol %.6g), total turning %.6g -> %.6g, "
+             .. "bending energy %.6g -> %.6g")
+        :format(o.out, what, C:degree(), F:degree(), rep.max_deviation, o.tol, rep.turning_before,
+                rep.turning_after, rep.energy_before, rep.energy_after))
+      return
+    end
     print(("%s: degree %d -> %d, max deviation %.6g, total turning %.6g -> %.6g, bending energy %.6g -> %.6g")
       :format(o.out, C:degree(), F:degree(), C:max_deviation(F), C:total_turning(), F:total_turning(),
               C:bending_energy(), F:bending_energy()))

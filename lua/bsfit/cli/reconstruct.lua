@@ -30,6 +30,8 @@ usage: bsfit reconstruct [INPUT...] [options]
   --tol T          auto, periodic: add control points until the max deviation is <= T
   --open           fit open curves (auto and periodic strategies)
   --closed         fit closed curves (auto decides from the data when neither is given)
+  --smooth-tol T   then smooth each curve as much as possible within distance T
+                   (kernel filters, result cubic: docs/filtering.md)
   --samples K      curve samples written to <name>.csv (default 1000)
   --format LIST    any of json,svg,csv,iges,step,dxf (default json,svg,csv)
   --polygon MODE   the control polygon in the pictures: auto (drawn up to 60
@@ -78,6 +80,12 @@ local flags = {
   ["--tol"] = function(o, v)
     o.tol = tonumber(v)
     if not o.tol or not (o.tol >= 0) then error("--tol must be a number >= 0, got '" .. v .. "'", 0) end
+  end,
+  ["--smooth-tol"] = function(o, v)
+    o.smooth_tol = tonumber(v)
+    if not (o.smooth_tol and o.smooth_tol > 0 and o.smooth_tol < math.huge) then
+      error("--smooth-tol must be a number > 0, got '" .. v .. "'", 0)
+    end
   end,
   ["--samples"] = function(o, v)
     o.samples = positive_integer(v, "--samples")
@@ -237,6 +245,7 @@ local function strategy_opts(spec, w)
   if spec.tol then o.tol = spec.tol end
   if spec.open then o.closed = false end
   if spec.closed and spec.strategy ~= "carvalho" then o.closed = true end -- carvalho: always closed
+  if spec.smooth_tol then o.smooth = { tol = spec.smooth_tol } end
   if w then o.point_weights = w end
   return o
 end
@@ -341,7 +350,7 @@ local function specs_of(o, inputs)
     specs[i] = { path = inp.path, name = inp.name, index = inp.index, outdir = o.outdir,
                  strategy = o.strategy, degree = o.degree, count = o.count, tol = o.tol,
                  open = o.open, closed = o.closed, samples = o.samples, formats = o.formats,
-                 polygon = o.polygon,
+                 polygon = o.polygon, smooth_tol = o.smooth_tol,
                  debug = o.debug }
   end
   return specs

@@ -83,8 +83,23 @@ function M.to3d(C, sl)
                         periodic = periodic }
 end
 
--- The sections which can be skinned: one closed, polynomial loop per slice, in slice
--- order; or nil and the reason the surface is not built.
+-- A rational section (auto writes circular arcs exactly) as the polynomial cubic nearest
+-- to it in least squares, within 1e-6 of its size (bs.filter.reduce adds knots until the
+-- true distance is that small): skinning interpolates control points across the
+-- sections, which rational sections would not survive.
+local function polynomial(C, name)
+  local x0, x1 = math.huge, -math.huge
+  local ctrl = C:control_points()
+  for i = 1, #ctrl do
+    for _, x in ipairs { ctrl:get(i) } do x0, x1 = math.min(x0, x), math.max(x1, x) end
+  end
+  local R, rep = bs.filter.reduce(C, { degree = math.max(C:degree(), 3), tol = 1e-6 * (x1 - x0) })
+  if not R then error(name .. ": no polynomial within 1e-6 of its size: " .. tostring(rep), 0) end
+  return R
+end
+
+-- The sections which can be skinned: one closed loop per slice, in slice order, each
+-- polynomial; or nil and the reason the surface is not built.
 local function skinnable(result)
   local per_slice, order = {}, {}
   for i, c in ipairs(result.curves) do
@@ -105,7 +120,9 @@ local function skinnable(result)
     local C = list[1].curve
     if not C:is_periodic() then return nil, list[1].name .. " is not a closed loop" end
     if C:is_rational() then
-      return nil, list[1].name .. " is rational (circular arcs): skinning needs polynomial sections"
+      local ok, R = pcall(polynomial, C, list[1].name)
+      if not ok then return nil, R end
+      C = R
     end
     sections[#sections + 1] = C
   end
@@ -123,9 +140,11 @@ function M.skin(result, ctx)
     result.surface_message = why
     return
   end
-  local S, rep = bs.surface.skin(sections)
-  if not S then
-    result.surface_message = "skinning failed: " .. tostring(rep)
+  -- a section the skinning cannot take (e.g. a corner at its seam: see docs/scan.md) is
+  -- reported, not raised: the sections themselves are still written
+  local ok, S, rep = pcall(bs.surface.skin, sections)
+  if not ok or not S then
+    result.surface_message = "skinning failed: " .. tostring(ok and rep or S):gsub("^.-%((.*)%)$", "%1")
     return
   end
   result.surface, result.skin = S, rep

@@ -465,17 +465,56 @@ function M.run(strategy, P, opts)
   return ctx.curve, (strategy.report or M.report)(ctx)
 end
 
+-- The tolerance form of the smoothing step (M.smooth_curve): checks spec, smooths C by
+-- bs.filter.smooth; returns the curve and the report of M.smooth_curve with the order,
+-- width, knots added and whether anything changed.
+local function smooth_to_tol(C, spec)
+  local bad = "bad argument #2 to 'run' (option 'smooth': %s)"
+  local tol = spec.tol
+  if type(tol) ~= "number" or not (tol > 0 and tol < math.huge) then
+    error(bad:format("tol must be a number > 0"), 0)
+  end
+  for k in pairs(spec) do
+    if k ~= "tol" and k ~= "order" and k ~= "degree" then
+      error(bad:format("unknown field '" .. tostring(k) .. "' with tol"), 0)
+    end
+  end
+  for _, k in ipairs { "order", "degree" } do
+    local v = spec[k]
+    if v ~= nil and (math.type(v) ~= "integer" or v < 1) then
+      error(bad:format(k .. " must be an integer >= 1"), 0)
+    end
+  end
+  local S, rep = M.ok("smoothing", bs.filter.smooth(C, { tol = tol, order = spec.order,
+                                                         degree = spec.degree }))
+  return S, { deviation = rep.max_deviation, turning = { rep.turning_before, rep.turning_after },
+              bending = { rep.energy_before, rep.energy_after }, changed = rep.changed,
+              order = rep.order, delta = rep.delta, knots_added = rep.knots_added,
+              degree = S:degree() }
+end
+
 -- The smoothing step every strategy accepts (SPEC 3): opts.smooth = k (or {k = k}) box
 -- filters the fitted curve over k knot spans (the moving average of k control points
 -- on uniform knots; the exact filter of the same width, k times the mean span, on any
 -- other knots), {delta = d} over [t - d, t + d]. The curve becomes one degree higher.
+-- {tol = t [, order = r] [, degree = q]} smooths to a tolerance instead
+-- (bs.filter.smooth, docs/filtering.md): the smoothest kernel filter whose result,
+-- brought back to degree q (default 3), stays within t of the fit; the report then also
+-- gives the order and width chosen, the knots added and whether anything changed.
 -- Returns what it changed: the maximum deviation it introduced, and the total turning
 -- and bending energy before and after.
 function M.smooth_curve(ctx, spec)
   local C = ctx.curve
   if math.type(spec) == "integer" then spec = { k = spec } end
-  if type(spec) ~= "table" or (spec.delta == nil and (math.type(spec.k) ~= "integer" or spec.k < 1)) then
-    error("bad argument #2 to 'run' (option 'smooth' must be an integer k >= 1, {k = k} or {delta = d})", 0)
+  if type(spec) == "table" and spec.tol ~= nil then
+    local S, rep = smooth_to_tol(C, spec)
+    ctx.curve = S
+    return rep
+  end
+  if type(spec) ~= "table"
+     or (spec.delta == nil and (math.type(spec.k) ~= "integer" or spec.k < 1)) then
+    error("bad argument #2 to 'run' (option 'smooth' must be an integer k >= 1, {k = k}, "
+          .. "{delta = d} or {tol = t})", 0)
   end
   local S
   if spec.delta ~= nil then
