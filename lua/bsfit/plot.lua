@@ -64,7 +64,9 @@ function M.ticks(a, b, n)
   for k = math.ceil(a / step - 1e-9), math.floor(b / step + 1e-9) do
     local v = k * step
     t[#t + 1] = v
-    labels[#labels + 1] = math.abs(v) < step * 1e-9 and "0" or ("%." .. dec .. "f"):format(v)
+    -- fixed decimals read best; past 4 of them (tiny residuals), "1e-12" reads better
+    local label = dec <= 4 and ("%." .. dec .. "f"):format(v) or ("%.3g"):format(v)
+    labels[#labels + 1] = math.abs(v) < step * 1e-9 and "0" or label
   end
   return t, labels, step
 end
