@@ -121,33 +121,22 @@ end
 -- Inputs
 -- =======================================================================
 
-local function shell_quote(s) return "'" .. s:gsub("'", "'\\''") .. "'" end
-
--- True when path names a directory (reading it fails with EISDIR).
-local function is_dir(path)
-  local f = io.open(path, "rb")
-  if not f then return false end
-  local _, _, code = f:read(1)
-  f:close()
-  return code == 21
-end
+-- True when path names a directory (bs.io.kind: stat, no shell).
+local function is_dir(path) return bs.io.kind(path) == "directory" end
 
 local point_ext = { csv = true, txt = true, xy = true, xyz = true, dat = true, pts = true }
 
--- The point files of a directory, sorted by name.
+-- The point files of a directory, sorted by name (bs.io.listdir: any byte a name may
+-- hold, newlines included). Raises with the system's reason when it cannot be listed.
 local function list_dir(dir)
-  local p = io.popen("ls -1A -- " .. shell_quote(dir) .. " 2>/dev/null")
-  local files = {}
-  if p then
-    for name in p:lines() do
-      local ext = name:match("%.([%w]+)$")
-      if ext and point_ext[ext:lower()] and not is_dir(dir .. "/" .. name) then
-        files[#files + 1] = dir:gsub("/+$", "") .. "/" .. name
-      end
-    end
-    p:close()
+  local names, err = bs.io.listdir(dir)
+  if not names then error(err, 0) end
+  local files, base = {}, dir:gsub("/+$", "") -- "/" becomes "": paths "/name"
+  for _, name in ipairs(names) do
+    local ext = name:match("%.([%w]+)$")
+    local path = base .. "/" .. name
+    if ext and point_ext[ext:lower()] and not is_dir(path) then files[#files + 1] = path end
   end
-  table.sort(files)
   return files
 end
 
@@ -167,7 +156,17 @@ function M.demo_dir()
   return (up or ".") .. "/tests/data/demo"
 end
 
--- Input sections: {path = ..., name = ...}, names made unique by a suffix.
+-- The section name of a path: its last component without the extension.
+local function section_name(p)
+  local base = (p:gsub("/+$", ""):match("([^/]*)$") or ""):gsub("%.[^.]*$", "")
+  base = base:gsub("[%c]", "_") -- a newline in a name would break the summary's lines
+  return base ~= "" and base or "section"
+end
+
+-- Input sections: {path = ..., name = ...}, names made unique by a suffix. A path
+-- that names nothing, or ends with '/' but is no directory, stays an input: its
+-- section fails with the system's reason and the others still run. Raises when a
+-- directory cannot be listed.
 function M.inputs(list)
   local paths = {}
   if #list == 0 then list = { M.demo_dir() } end
@@ -182,8 +181,7 @@ function M.inputs(list)
   end
   local seen, out = {}, {}
   for _, p in ipairs(paths) do
-    local base = p:match("([^/]+)$"):gsub("%.[^.]*$", "")
-    if base == "" then base = "section" end
+    local base = section_name(p)
     local name, k = base, 1
     while seen[name] do k = k + 1; name = base .. "_" .. k end
     seen[name] = true
@@ -400,10 +398,11 @@ function M.main(args)
   if o.help then io.stdout:write(M.usage); return 0 end
   local okl, lerr = pcall(load_strategy, o.strategy)
   if not okl then warn("%s", tostring(lerr)); return 2 end
-  local inputs = M.inputs(o.inputs)
+  local oki, inputs = pcall(M.inputs, o.inputs)
+  if not oki then warn("%s", tostring(inputs)); return 2 end
   if #inputs == 0 then warn("no input sections"); return 2 end
-  os.execute("mkdir -p " .. shell_quote(o.outdir))
-  if not is_dir(o.outdir) then warn("cannot create output directory %s", o.outdir); return 2 end
+  local okd, derr = bs.io.mkdir(o.outdir)
+  if not okd then warn("%s", tostring(derr)); return 2 end
   local specs = specs_of(o, inputs)
   local rows
   if o.jobs > 1 and #specs > 1 and bs.parallel then
