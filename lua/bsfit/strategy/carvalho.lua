@@ -169,7 +169,13 @@ function M.run(P, opts)
   if type(opts) == "table" and opts.closed == false then
     error("bad argument #2 to 'run' (carvalho fits closed sections only: use bsfit.strategy.periodic with closed = false)", 2)
   end
-  return common.run(M, P, opts)
+  local notes, map
+  P, opts, notes = common.drop_closing_point(P, opts)
+  local Q
+  Q, opts, map = common.merge_repeats(P, opts, notes)
+  local C, rep = common.run(M, Q, opts, notes)
+  if map then common.unmerge_report(rep, map, #P) end
+  return C, rep
 end
 
 return M
