@@ -242,7 +242,8 @@ bsfit_err bsfit_filter_box_curve(const bsfit_curve *c, int k, bsfit_curve *out,
   e = c->periodic ? bsfit__filter_ma_periodic(&v, k, &a, &f, st)
                   : bsfit__filter_ma_open(&v, k, &a, &f, st);
   if (e != BSFIT_OK) return e;
-  return give_curve(&f, c->dim, c->periodic, 0, &a, out, st);
+  /* validated: a minimal period may not hold the curve of degree p + 1 */
+  return give_curve(&f, c->dim, c->periodic, c->periodic, &a, out, st);
 }
 
 static bsfit_err check_delta(double delta, double length, const char *what, bsfit_status *st) {
@@ -259,13 +260,19 @@ bsfit_err bsfit_filter_box_curve_delta(const bsfit_curve *c, double delta, bsfit
   bsfit_allocator a;
   bsfit__fview v;
   bsfit__fspline f;
-  double lo, hi;
+  double lo, hi, res;
   bsfit_err e = check_curve(c, st);
   if (e != BSFIT_OK) return e;
   if (out == NULL) return bsfit__fail(st, BSFIT_EINVAL, "output curve is NULL");
   bsfit_curve_domain(c, &lo, &hi);
   e = check_delta(delta, hi - lo, "delta", st);
   if (e != BSFIT_OK) return e;
+  /* the exact filter merges knots closer than ~64 ulps of the knot values; a window
+  ** within that resolution would merge knots 2 delta apart (and overran the refinement) */
+  res = 1e-10 * (fabs(c->knots[0]) + fabs(c->knots[c->n + (size_t)c->degree]) + (hi - lo));
+  if (delta < res)
+    return bsfit__fail(st, BSFIT_EINVAL, "delta = %g is below the resolution of the knots (at "
+                       "least %g)", delta, res);
   a = c->alloc;
   v = curve_view(c);
   e = c->periodic ? bsfit__filter_exact_periodic(&v, delta, &a, &f, st)

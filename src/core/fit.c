@@ -497,6 +497,9 @@ static bsfit_err fit_body(bsfit_fitter *f, const double *pts, size_t m, int dim,
   }
   if (rep == NULL && res == NULL) return bsfit__ok(st); /* nobody reads the residuals */
   bsfit__fit_residuals(f, out->ctrl, pts, m, dim, u, w, res, &rms, &max, &imax);
+  if (!isfinite(rms) || !isfinite(max)) /* finite control points so large they overflow */
+    return bsfit__fail(st, BSFIT_ESINGULAR, "the fit overflows (residuals not finite): the "
+                       "normal matrix is numerically singular");
   if (rep) {
     rep->rms = rms;
     rep->max = max;
