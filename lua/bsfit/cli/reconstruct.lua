@@ -24,8 +24,10 @@ usage: bsfit reconstruct [INPUT...] [options]
   -o OUTDIR        output directory (default bsfit-out)
   --strategy S     auto | carvalho | periodic | FILE.lua (default auto)
   --degree P       curve degree (default 3)
-  --count N|auto   control points (default auto: the paper's inversion / 50% rule)
+  --count N|auto   control points (default auto: the paper's inversion / 50% rule);
+                   more than the points allow is an error naming the limit
   --tol T          auto, periodic: add control points until the max deviation is <= T
+                   (not met: the best fit, and a warning on stderr and in the summary)
   --open           fit open curves (auto and periodic strategies)
   --samples K      curve samples written to <name>.csv (default 1000)
   --format LIST    any of json,svg,csv,iges (default json,svg,csv)
@@ -298,6 +300,8 @@ function M.section(spec)
     row.rms, row.max, row.max_index = rep.rms, rep.max, rep.max_index
     row.max_trusted = rep.max_trusted -- set when the file down-weights some points
     row.start_index = rep.start_index
+    -- what the strategy could not honour or changed (rep.warnings): one field, "; "-joined
+    row.warnings = table.concat(rep.warnings or {}, "; "):gsub("[%c]", " ")
     write_outputs(spec, P, C, rep, samples(C, spec.samples))
   end)
   if not ok then
@@ -319,7 +323,7 @@ end
 -- =======================================================================
 
 local summary_columns = { "name", "input", "points", "control_points", "rms", "max", "max_index",
-                          "max_trusted", "start_index", "status", "error" }
+                          "max_trusted", "start_index", "status", "error", "warnings" }
 
 local function specs_of(o, inputs)
   local specs = {}
@@ -416,6 +420,8 @@ function M.main(args)
     if r.status ~= "ok" then
       failed = failed + 1
       warn("%s: %s", r.input, r.error)
+    elseif r.warnings and r.warnings ~= "" then
+      warn("%s: warning: %s", r.input, r.warnings)
     end
   end
   local okw, werr = pcall(write_summaries, o, rows)

@@ -551,6 +551,75 @@ end
 -- Runs every step of `strategy` in order on P. The curve is the last curve a step
 -- returned (ctx.curve). Returns the curve and the report. Raises on misuse and on
 -- a failed step (message "<strategy>: ...").
+-- {======================================================================
+-- Explicit requests the data cannot honour: an error or a warning, never silence
+-- =======================================================================
+
+-- Number of distinct points of P (consecutive repeats and a closing repeat aside,
+-- points that coincide share a parameter and cannot carry a control point each).
+local function distinct_points(P)
+  local seen, n = {}, 0
+  for i = 1, #P do
+    local key = string.pack(("d"):rep(P:dim()), P:get(i))
+    if not seen[key] then seen[key], n = true, n + 1 end
+  end
+  return n
+end
+
+-- An explicit count (opts.count, a plain integer) must be one a fit can have: at least
+-- degree + 1, at most the number of distinct points. Raises naming the limit.
+function M.check_count(strategy, P, opts, settings)
+  local n = opts.count
+  if n == nil or type(n) == "function" or (getmetatable(n) or {}).__call then return end
+  local p = settings.degree
+  if math.type(n) ~= "integer" then
+    error(("%s: count must be an integer, got %s"):format(strategy.name, tostring(n)), 0)
+  end
+  if n < p + 1 then
+    error(("%s: count %d is below the minimum for degree %d (at least %d)")
+          :format(strategy.name, n, p, p + 1), 0)
+  end
+  if n > #P then
+    error(("%s: count %d is more than the %d points allow (at most %d)")
+          :format(strategy.name, n, #P, #P), 0)
+  end
+  local d = distinct_points(P)
+  if n > d then
+    error(("%s: count %d is more than the %d distinct points allow (at most %d)")
+          :format(strategy.name, n, d, d), 0)
+  end
+end
+
+-- After the steps: a strategy that fitted fewer control points than an explicit
+-- count asked for (its knot placement keeps data in every span) must say so.
+function M.check_count_honoured(strategy, opts, C)
+  local n = opts.count
+  if math.type(n) ~= "integer" or not M.is_curve(C) then return end
+  local got = C:distinct()
+  if got ~= n then
+    error(("%s: count %d cannot be honoured on these points: at most %d control points here")
+          :format(strategy.name, n, got), 0)
+  end
+end
+
+-- tol (a setting of auto and periodic) not met: the best fit, with a warning. The
+-- distance judged is the one the strategy reports (max_trusted when the file
+-- down-weights points).
+function M.check_tol(settings, rep)
+  local tol = settings.tol
+  if type(tol) ~= "number" then return end
+  local got = rep.max_trusted or rep.max
+  if type(got) == "number" and got > tol then
+    rep.warnings[#rep.warnings + 1] = ("tol %g not met: max deviation %.3g with %s control points")
+      :format(tol, got, tostring(rep.count))
+    rep.tol_met = false
+  else
+    rep.tol_met = true
+  end
+end
+
+-- }======================================================================
+
 -- notes (optional): what M.drop_closing_point found, added to the report (warnings,
 -- dropped_closing_point).
 function M.run(strategy, P, opts, notes)
@@ -563,14 +632,16 @@ function M.run(strategy, P, opts, notes)
           :format(strategy.name, #P, #P == 1 and " is" or "s are", settings.degree, need,
                   notes and notes.dropped_closing_point and "; the repeated closing point dropped" or ""), 0)
   end
+  M.check_count(strategy, P, opts, settings)
   local ctx = { strategy = strategy, opts = opts, settings = settings,
-                P = P, times = {}, cache = {} }
+                P = P, times = {}, cache = {}, warnings = {} }
   local t0 = clock()
   for _, name in ipairs(strategy.order) do
     local v = M.call(ctx, name, ctx.P)
     ctx[name] = v
     if M.is_curve(v) then ctx.curve = v end
   end
+  M.check_count_honoured(strategy, opts, ctx.curve)
   if opts.smooth ~= nil then
     local t1 = clock()
     ctx.smoothing = M.smooth_curve(ctx, opts.smooth)
@@ -584,6 +655,7 @@ function M.run(strategy, P, opts, notes)
   for _, w in ipairs(ctx.warnings or {}) do warnings[#warnings + 1] = w end
   rep.warnings = warnings
   rep.dropped_closing_point = notes and notes.dropped_closing_point or nil
+  M.check_tol(settings, rep)
   return ctx.curve, rep
 end
 
