@@ -43,15 +43,21 @@ typedef struct window {
   size_t len, cap; /* bytes held (the unfinished line first), size of p */
 } window;
 
+static bsfit_err too_long(const char *path, size_t line, size_t maxline, bsfit_status *st) {
+  return bsfit__fail(st, BSFIT_EFORMAT, "%s:%zu: line longer than %zu bytes (not a point file?)",
+                     path, line, maxline);
+}
+
 /* Hands every complete line of w to fn and keeps the unfinished tail at the front. */
-static bsfit_err emit_lines(window *w, size_t *line, bsfit__line_fn fn, void *ud,
-                            bsfit_status *st) {
+static bsfit_err emit_lines(window *w, const char *path, size_t maxline, size_t *line,
+                            bsfit__line_fn fn, void *ud, bsfit_status *st) {
   size_t i = 0;
   for (;;) {
     const char *nl = memchr(w->p + i, '\n', w->len - i);
     bsfit_err e;
     if (nl == NULL) break;
     ++*line;
+    if ((size_t)(nl - (w->p + i)) > maxline) return too_long(path, *line, maxline, st);
     e = fn(ud, *line, w->p + i, (size_t)(nl - (w->p + i)), st);
     if (e != BSFIT_OK) return e;
     i = (size_t)(nl - w->p) + 1;
@@ -67,11 +73,9 @@ static bsfit_err read_lines_from(FILE *f, const char *path, window *w, size_t ma
   bsfit_err e;
   while ((got = fread(w->p + w->len, 1, w->cap - w->len, f)) > 0) {
     w->len += got;
-    e = emit_lines(w, &line, fn, ud, st);
+    e = emit_lines(w, path, maxline, &line, fn, ud, st);
     if (e != BSFIT_OK) return e;
-    if (w->len > maxline) /* no newline in sight: not a text file of lines */
-      return bsfit__fail(st, BSFIT_EFORMAT, "%s:%zu: line longer than %zu bytes (not a point file?)",
-                         path, line + 1, maxline);
+    if (w->len > maxline) return too_long(path, line + 1, maxline, st); /* no newline in sight */
   }
   if (ferror(f))
     return bsfit__fail(st, BSFIT_EIO, "cannot read %s: %s", path,

@@ -54,19 +54,24 @@ function M.parse(args)
   return o
 end
 
--- filters C as asked; returns the filtered curve (raises on failure)
-function M.filter(C, o)
-  local F, msg
-  if o.delta then
-    F, msg = bs.filter.box(C, { delta = o.delta })
-  elseif C:is_uniform() then
-    F, msg = bs.filter.box(C, o.k)
-  else
-    local a, b = C:domain()
-    F, msg = bs.filter.box(C, { delta = o.k * (b - a) / (C:count() - C:degree()) / 2 })
+-- bs.filter.box(C, arg), its refusals (raised as misuse: the binding's argument
+-- errors) turned into the plain reason a command-line user can act on
+local function box(C, arg)
+  local ok, F, msg = pcall(bs.filter.box, C, arg)
+  if not ok then
+    local reason = tostring(F):match("bad argument #%d+ to '[^']*' %((.*)%)$")
+    error(reason or tostring(F), 0)
   end
   if not F then error(msg, 0) end
   return F
+end
+
+-- filters C as asked; returns the filtered curve (raises on failure)
+function M.filter(C, o)
+  if o.delta then return box(C, { delta = o.delta }) end
+  if C:is_uniform() then return box(C, o.k) end
+  local a, b = C:domain()
+  return box(C, { delta = o.k * (b - a) / (C:count() - C:degree()) / 2 })
 end
 
 local function picture(C, F)

@@ -60,6 +60,7 @@ local function parse_formats(s)
     if not formats_known[name] then error(("unknown format '%s' (json, svg, csv, iges)"):format(name), 0) end
     f[name] = true
   end
+  if next(f) == nil then error("--format needs at least one of json, svg, csv, iges", 0) end
   return f
 end
 
@@ -67,7 +68,10 @@ end
 local flags = {
   ["-o"] = function(o, v) o.outdir = v end,
   ["--strategy"] = function(o, v) o.strategy = v end,
-  ["--degree"] = function(o, v) o.degree = positive_integer(v, "--degree") end,
+  ["--degree"] = function(o, v)
+    o.degree = positive_integer(v, "--degree")
+    if o.degree > 30 then error("--degree must be at most 30 (BSFIT_MAX_DEGREE)", 0) end
+  end,
   ["--count"] = function(o, v) o.count = v ~= "auto" and positive_integer(v, "--count") or nil end,
   ["--tol"] = function(o, v)
     o.tol = tonumber(v)
@@ -284,6 +288,19 @@ local function strategy_opts(spec, w)
   return o
 end
 
+-- A hint for a section that failed: coordinates so large that squared distances
+-- overflow a double (every strategy measures them) fail deep inside a step with a
+-- message about that step. Looked at only after a failure (one C pass over P).
+local function magnitude_hint(P)
+  local v = bs.vector.frombytes(P:bytes())
+  local big = math.max(math.abs(v:max()), math.abs(v:min()))
+  if big > 1e150 then
+    return (" (coordinates up to %.3g: too large to square in double precision; scale the section)")
+      :format(big)
+  end
+  return ""
+end
+
 -- Fits one section and writes its files. spec: path, name, outdir, strategy,
 -- degree, count, tol, open, samples, formats. Never raises: returns the summary
 -- row, with status "error" and the message when something failed.
@@ -294,8 +311,9 @@ function M.section(spec)
     local P, w = bs.points.read(spec.path)
     if not P then error(tostring(w), 0) end
     row.points = #P
-    local C, rep = load_strategy(spec.strategy).run(P, strategy_opts(spec, w))
-    if not C then error(tostring(rep), 0) end
+    local okr, C, rep = pcall(load_strategy(spec.strategy).run, P, strategy_opts(spec, w))
+    if not okr then error(tostring(C) .. magnitude_hint(P), 0) end
+    if not C then error(tostring(rep) .. magnitude_hint(P), 0) end
     row.control_points = C:distinct()
     row.rms, row.max, row.max_index = rep.rms, rep.max, rep.max_index
     row.max_trusted = rep.max_trusted -- set when the file down-weights some points

@@ -632,6 +632,9 @@ function M.run(strategy, P, opts, notes)
           :format(strategy.name, #P, #P == 1 and " is" or "s are", settings.degree, need,
                   notes and notes.dropped_closing_point and "; the repeated closing point dropped" or ""), 0)
   end
+  if M.all_same(P) then
+    error(("%s: all %d points coincide"):format(strategy.name, #P), 0)
+  end
   M.check_count(strategy, P, opts, settings)
   local ctx = { strategy = strategy, opts = opts, settings = settings,
                 P = P, times = {}, cache = {}, warnings = {} }
