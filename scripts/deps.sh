@@ -7,6 +7,7 @@ set -euo pipefail
 pkgs=(build-essential cmake pkg-config lua5.4 liblua5.4-dev liblapacke-dev libopenblas-dev)
 if [ "${1:-}" = "--test" ]; then
   pkgs+=(libcmocka-dev python3-scipy)
+  pkgs+=(clang libclang-rt-14-dev) # the libFuzzer targets (tests/fuzz, scripts/fuzz.sh)
 fi
 
 missing=()
