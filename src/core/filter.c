@@ -242,8 +242,9 @@ bsfit_err bsfit_filter_box_curve(const bsfit_curve *c, int k, bsfit_curve *out,
   e = c->periodic ? bsfit__filter_ma_periodic(&v, k, &a, &f, st)
                   : bsfit__filter_ma_open(&v, k, &a, &f, st);
   if (e != BSFIT_OK) return e;
-  /* validated: a minimal period may not hold the curve of degree p + 1 */
-  return give_curve(&f, c->dim, c->periodic, c->periodic, &a, out, st);
+  /* validated: a minimal period may not hold the curve of degree p + 1, and knots of a
+  ** uniform curve far from 0 (spacing near their ulp) may coincide once shifted */
+  return give_curve(&f, c->dim, c->periodic, 1, &a, out, st);
 }
 
 static bsfit_err check_delta(double delta, double length, const char *what, bsfit_status *st) {

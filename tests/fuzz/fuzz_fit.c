@@ -90,6 +90,9 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
                           pb.u, &st) != BSFIT_OK) {
     return 0;
   } else {
+    size_t j;
+    for (j = 0; FZ_KNOWN_OPEN && j < pb.m; j++) /* item 8: chords that underflow give NaN */
+      if (!isfinite(pb.u[j])) return 0;
     fz_check_finite(pb.u, pb.m, "params");
   }
   fz_strict = fz_tame(pb.pts, pb.m * (size_t)pb.dim) && (!pb.use_w || fz_tame(pb.w, pb.m)) &&

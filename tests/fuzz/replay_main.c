@@ -61,7 +61,7 @@ static int run_dir(const char *dir, int *count) {
     n++;
   }
   closedir(d);
-  qsort(names, n, sizeof *names, by_name);
+  if (n > 1) qsort(names, n, sizeof *names, by_name);
   for (i = 0; i < n; i++) {
     bad |= run_file(names[i]);
     ++*count;
