@@ -125,8 +125,7 @@ static bsfit_err make_one(const char *path, const char *whole, bsfit_status *st)
   if (mkdir(path, 0777) == 0) return BSFIT_OK;
   if (errno == EEXIST && bsfit_path_kind(path) == BSFIT_PATH_DIR) return BSFIT_OK;
   if (errno == EEXIST)
-    return bsfit__fail(st, BSFIT_EIO, "cannot create directory %s: %s is not a directory", whole,
-                       path);
+    return bsfit__fail(st, BSFIT_EIO, "%s is not a directory (making %s)", path, whole);
   return bsfit__fail(st, BSFIT_EIO, "cannot create directory %s: %s", whole, strerror(errno));
 }
 
