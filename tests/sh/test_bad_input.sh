@@ -81,6 +81,7 @@ while IFS=$'\t' read -r name want frag outcheck cmd; do
   cmd=${cmd//@T/$T}
   cmd=${cmd//@O/$TMP/out/$name}
   frag=${frag//@T/$T}
+  frag=${frag//@D/$D}
   eval "set -- $cmd"
   check_case "$name" "$want" "$frag" "$outcheck" "$@"
 done <"$D/cases.tsv"

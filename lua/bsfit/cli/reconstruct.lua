@@ -301,6 +301,18 @@ local function magnitude_hint(P)
   return ""
 end
 
+-- A strategy's refusal as a user reads it: a binding's argument error raised inside a
+-- shipped module ("…/bsfit/strategy/auto.lua:174: bad argument #1 to 'breaks' (40
+-- points leave too few knot spans for degree 20)") is the section not suiting the
+-- strategy: its reason, without the module's file:line and the argument number.
+-- Anything else (a bug: "attempt to index a nil value") is kept whole.
+local function user_message(strategy, err)
+  err = tostring(err)
+  local reason = err:match("^[^\n]-/bsfit/[%w_/]+%.lua:%d+: bad argument #%d+ to '[^']*' %((.*)%)$")
+  if reason then return ("%s: %s"):format(strategy, reason) end
+  return err
+end
+
 -- Fits one section and writes its files. spec: path, name, outdir, strategy,
 -- degree, count, tol, open, samples, formats. Never raises: returns the summary
 -- row, with status "error" and the message when something failed.
@@ -312,7 +324,7 @@ function M.section(spec)
     if not P then error(tostring(w), 0) end
     row.points = #P
     local okr, C, rep = pcall(load_strategy(spec.strategy).run, P, strategy_opts(spec, w))
-    if not okr then error(tostring(C) .. magnitude_hint(P), 0) end
+    if not okr then error(user_message(spec.strategy, C) .. magnitude_hint(P), 0) end
     if not C then error(tostring(rep) .. magnitude_hint(P), 0) end
     row.control_points = C:distinct()
     row.rms, row.max, row.max_index = rep.rms, rep.max, rep.max_index
@@ -437,7 +449,9 @@ function M.main(args)
   for _, r in ipairs(rows) do
     if r.status ~= "ok" then
       failed = failed + 1
-      warn("%s: %s", r.input, r.error)
+      -- the reader's messages start with the path already
+      if r.error:sub(1, #r.input + 1) == r.input .. ":" then warn("%s", r.error)
+      else warn("%s: %s", r.input, r.error) end
     elseif r.warnings and r.warnings ~= "" then
       warn("%s: warning: %s", r.input, r.warnings)
     end
