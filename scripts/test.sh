@@ -25,6 +25,6 @@ cmake --build build-asan -j "$jobs"
 echo "== fuzz smoke (build-fuzz/: libFuzzer + ASan + UBSan)"
 for t in $(bash scripts/fuzz.sh --list); do
   bash scripts/fuzz.sh --replay "$t"
-  FUZZ_MAX_LEN=4096 bash scripts/fuzz.sh "$t" "${BSFIT_FUZZ_SMOKE_SECONDS:-8}"
+  FUZZ_MAX_LEN=4096 bash scripts/fuzz.sh "$t" "${BSFIT_FUZZ_SMOKE_SECONDS:-5}"
 done
 # }====================================================================
