@@ -19,7 +19,10 @@ if [ "$1" = "--list" ]; then echo "$targets"; exit 0; fi
 replay=0
 if [ "$1" = "--replay" ]; then replay=1; shift; fi
 target=${1:-}
-echo "$targets" | grep -qx -- "$target" || { echo "fuzz.sh: unknown target '$target' ($(echo $targets))" >&2; exit 2; }
+if ! echo "$targets" | grep -qx -- "$target"; then
+  echo "fuzz.sh: unknown target '$target' ($(echo $targets))" >&2
+  exit 2
+fi
 
 if [ ! -f "$build/CMakeCache.txt" ]; then
   CC=clang cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DBSFIT_FUZZ=ON \
@@ -51,8 +54,8 @@ status=0
 "$bin" "$work" "$seeds" -max_total_time="$secs" -timeout=20 -rss_limit_mb=2048 \
   -max_len="${FUZZ_MAX_LEN:-8192}" -artifact_prefix="$art" -print_final_stats=1 \
   >"$build/fuzz_$target.log" 2>&1 || status=1
-find "$art" -type f -exec cp -n {} "$regress/" \; # crash-*, leak-*, timeout-*, oom-*
-grep -E "^(stat::number_of_executed_units|stat::peak_rss_mb|#[0-9]+ *DONE)" "$build/fuzz_$target.log" || true
+find "$art" -type f -exec mv -n {} "$regress/" \; # crash-*, leak-*, timeout-*, oom-*, slow-unit-*
+grep -E "^(stat::number_of_executed_units|stat::peak_rss_mb)" "$build/fuzz_$target.log" || true
 if [ $status -ne 0 ]; then
   grep -E "ERROR|CONTRACT|SUMMARY|#[0-9]+ in " "$build/fuzz_$target.log" | head -30 >&2
   echo "fuzz.sh: $target crashed; input(s) copied to $regress/ (log: $build/fuzz_$target.log)" >&2

@@ -61,8 +61,10 @@ static int io_listdir(lua_State *L) {
 static int io_kind(lua_State *L) {
   static const char *const kinds[] = {NULL, "file", "directory", "other"};
   int k = bsfit_path_kind(luaL_checkstring(L, 1));
-  if (k == BSFIT_PATH_NONE) luaL_pushfail(L);
-  else lua_pushstring(L, kinds[k]);
+  if (k == BSFIT_PATH_NONE)
+    luaL_pushfail(L);
+  else
+    lua_pushstring(L, kinds[k]);
   return 1;
 }
 
@@ -75,11 +77,11 @@ static int io_mkdir(lua_State *L) {
 }
 
 static const luaL_Reg io_funcs[] = {
-  {"listdir", io_listdir}, {"kind", io_kind}, {"mkdir", io_mkdir}, {NULL, NULL}};
+    {"listdir", io_listdir}, {"kind", io_kind}, {"mkdir", io_mkdir}, {NULL, NULL}};
 
 void bsfit__lua_lib_io(lua_State *L) {
-  int sandboxed = lua_getfield(L, LUA_REGISTRYINDEX, "bsfit.sandbox") != LUA_TNIL &&
-                  lua_toboolean(L, -1);
+  int sandboxed =
+      lua_getfield(L, LUA_REGISTRYINDEX, "bsfit.sandbox") != LUA_TNIL && lua_toboolean(L, -1);
   lua_pop(L, 1);
   if (sandboxed) return;
   luaL_newlib(L, io_funcs);

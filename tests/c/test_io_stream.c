@@ -112,14 +112,15 @@ static void test_stream_matches_parse(void **state) {
     assert_non_null(s);
     for (i = 0; i < lines && len + 110000 < cap; i++) {
       double u = rng_uniform(&r);
-      if (u < 0.01) { /* a long comment */
+      if (u < 0.01) {                                    /* a long comment */
         size_t k, n = (size_t)(rng_uniform(&r) * 65000); /* the limit is 65536 */
         s[len++] = '#';
         for (k = 0; k < n; k++) s[len++] = (char)('a' + k % 26);
       } else if (u < 0.05) {
         len += (size_t)sprintf(s + len, "   ");
       } else if (dim == 2) {
-        len += (size_t)sprintf(s + len, "%.17g,%.17g", rng_range(&r, -1e3, 1e3), rng_range(&r, -1, 1));
+        len +=
+            (size_t)sprintf(s + len, "%.17g,%.17g", rng_range(&r, -1e3, 1e3), rng_range(&r, -1, 1));
       } else {
         len += (size_t)sprintf(s + len, "%.17g %.17g\t%.17g", rng_range(&r, -1e3, 1e3),
                                rng_range(&r, -1, 1), rng_range(&r, -1e-3, 1e-3));
@@ -130,8 +131,10 @@ static void test_stream_matches_parse(void **state) {
     len += (size_t)sprintf(s + len, dim == 2 ? "1,2" : "1 2 3");
     if (trial % 2) s[len++] = '\n'; /* the last line's newline is optional */
     write_text(tmp("r.csv"), s, len);
-    if (bsfit_points_parse(s, len, &xy1, &m1, &d1, NULL, NULL, &st) != BSFIT_OK) fail_msg("%s", st.msg);
-    if (bsfit_points_read(tmp("r.csv"), &xy2, &m2, &d2, NULL, NULL, &st) != BSFIT_OK) fail_msg("%s", st.msg);
+    if (bsfit_points_parse(s, len, &xy1, &m1, &d1, NULL, NULL, &st) != BSFIT_OK)
+      fail_msg("%s", st.msg);
+    if (bsfit_points_read(tmp("r.csv"), &xy2, &m2, &d2, NULL, NULL, &st) != BSFIT_OK)
+      fail_msg("%s", st.msg);
     assert_int_equal(m1, m2);
     assert_int_equal(d1, d2);
     assert_memory_equal(xy1, xy2, m1 * (size_t)d1 * sizeof(double));
@@ -286,12 +289,12 @@ static void test_dir_kind_make(void **state) {
 
 int main(void) {
   const struct CMUnitTest tests[] = {
-    cmocka_unit_test(test_stream_matches_parse),
-    cmocka_unit_test(test_stream_memory_follows_points),
-    cmocka_unit_test(test_stream_first_bad_line),
-    cmocka_unit_test(test_stream_binary),
-    cmocka_unit_test(test_dir_list),
-    cmocka_unit_test(test_dir_kind_make),
+      cmocka_unit_test(test_stream_matches_parse),
+      cmocka_unit_test(test_stream_memory_follows_points),
+      cmocka_unit_test(test_stream_first_bad_line),
+      cmocka_unit_test(test_stream_binary),
+      cmocka_unit_test(test_dir_list),
+      cmocka_unit_test(test_dir_kind_make),
   };
   return cmocka_run_group_tests(tests, setup, teardown);
 }

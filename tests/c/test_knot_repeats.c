@@ -61,7 +61,7 @@ static void test_knots_never_decrease(void **state) {
 
 int main(void) {
   const struct CMUnitTest tests[] = {
-    cmocka_unit_test(test_knots_never_decrease),
+      cmocka_unit_test(test_knots_never_decrease),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -59,6 +59,17 @@ static int elevation_known_open(const bsfit_curve *c) {
   return 0;
 }
 
+/* Whether every u[i] lies in the domain: outside it an open curve is extrapolated
+** (bsfit_curve_eval's contract), and a polynomial far outside may overflow. */
+static int in_domain(const bsfit_curve *c, const double *u, size_t n) {
+  double a, b;
+  size_t i;
+  bsfit_knots_domain(c->knots, c->n, c->degree, &a, &b);
+  for (i = 0; i < n; i++)
+    if (!(u[i] >= a && u[i] <= b)) return c->periodic && isfinite(u[i]);
+  return 1;
+}
+
 /* Replaces *c by *d when the operation gave a curve (chains the operations). */
 static void take(bsfit_curve *c, bsfit_curve *d) {
   bsfit_curve_free(c);
@@ -118,7 +129,8 @@ static void one_op(fuzz_in *in, bsfit_curve *c) {
       break;
     case 5:
       k = fz_byte(in) % 5;
-      if (bsfit_curve_derivs(c, fz_param(in, c), k, out, &st) == BSFIT_OK)
+      u = fz_param(in, c);
+      if (bsfit_curve_derivs(c, u, k, out, &st) == BSFIT_OK && in_domain(c, &u, 1))
         fz_check_finite(out, (size_t)(k + 1) * (size_t)c->dim, "derivs");
       break;
     case 6:
@@ -150,7 +162,7 @@ static void one_op(fuzz_in *in, bsfit_curve *c) {
     }
     default:
       for (i = 0; i < 8; i++) X[i] = fz_param(in, c);
-      if (bsfit_curve_eval_many(c, X, 8, out, &st) == BSFIT_OK)
+      if (bsfit_curve_eval_many(c, X, 8, out, &st) == BSFIT_OK && in_domain(c, X, 8))
         fz_check_finite(out, 8 * (size_t)c->dim, "eval_many");
       break;
   }

@@ -28,11 +28,15 @@ static inline bsfit_err fz_make_curve(fuzz_in *in, bsfit_curve *c, bsfit_status 
     if (kind == 0 && clamped && i > 0 && (i <= (size_t)p || i >= n)) knots[i] = knots[i - 1];
   }
   for (i = 0; i < n * (size_t)dim; i++) ctrl[i] = fz_double(in);
-  for (i = 0; i < n; i++) w[i] = fz_byte(in) < 250 ? 0.25 + (double)fz_byte(in) / 32.0 : fz_double(in);
+  for (i = 0; i < n; i++)
+    w[i] = fz_byte(in) < 250 ? 0.25 + (double)fz_byte(in) / 32.0 : fz_double(in);
   switch (kind) {
-    case 1: return bsfit_curve_new_periodic(c, p, dim, n, knots, ctrl, rational ? w : NULL, NULL, st);
-    case 2: return bsfit_curve_new_bezier(c, dim, n, ctrl, rational ? w : NULL, NULL, st);
-    default: return bsfit_curve_new(c, p, dim, n, knots, ctrl, rational ? w : NULL, 0, NULL, st);
+    case 1:
+      return bsfit_curve_new_periodic(c, p, dim, n, knots, ctrl, rational ? w : NULL, NULL, st);
+    case 2:
+      return bsfit_curve_new_bezier(c, dim, n, ctrl, rational ? w : NULL, NULL, st);
+    default:
+      return bsfit_curve_new(c, p, dim, n, knots, ctrl, rational ? w : NULL, 0, NULL, st);
   }
 }
 

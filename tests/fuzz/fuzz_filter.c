@@ -27,13 +27,14 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
   if (fz_make_curve(&in, &c, &st) == BSFIT_OK) {
     double a, b, delta;
     int k = 1 + fz_byte(&in) % 8;
-    fz_strict = fz_tame(c.ctrl, c.n * (size_t)c.dim) &&
-                fz_tame(c.knots, c.n + (size_t)c.degree + 1);
+    fz_strict =
+        fz_tame(c.ctrl, c.n * (size_t)c.dim) && fz_tame(c.knots, c.n + (size_t)c.degree + 1);
     if (bsfit_filter_box_curve(&c, k, &f, &st) == BSFIT_OK) check_filtered(&c, &f, "box k");
     bsfit_curve_free(&f);
     bsfit_knots_domain(c.knots, c.n, c.degree, &a, &b);
     delta = fz_byte(&in) < 200 ? (b - a) * (double)(1 + fz_byte(&in)) / 512.0 : fz_double(&in);
-    if (bsfit_filter_box_curve_delta(&c, delta, &f, &st) == BSFIT_OK) check_filtered(&c, &f, "box delta");
+    if (bsfit_filter_box_curve_delta(&c, delta, &f, &st) == BSFIT_OK)
+      check_filtered(&c, &f, "box delta");
   }
   bsfit_curve_free(&f);
   bsfit_curve_free(&c);

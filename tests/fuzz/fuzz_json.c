@@ -32,9 +32,11 @@ static void check_surface(const bsfit_surface *s) {
   bsfit_surface d;
   if (bsfit_surface_validate(s, &st) != BSFIT_OK) fz_fail("json: surface valid", st.msg);
   fz_check_finite(s->ctrl, s->nu * s->nv * (size_t)s->dim, "json: surface points");
-  if (bsfit_surface_to_json(s, &t, &len, NULL, &st) != BSFIT_OK) fz_fail("json: surface out", st.msg);
+  if (bsfit_surface_to_json(s, &t, &len, NULL, &st) != BSFIT_OK)
+    fz_fail("json: surface out", st.msg);
   bsfit_surface_init(&d);
-  if (bsfit_surface_from_json(t, len, &d, NULL, &st) != BSFIT_OK) fz_fail("json: surface reread", st.msg);
+  if (bsfit_surface_from_json(t, len, &d, NULL, &st) != BSFIT_OK)
+    fz_fail("json: surface reread", st.msg);
   if (d.nu != s->nu || d.nv != s->nv ||
       memcmp(d.ctrl, s->ctrl, s->nu * s->nv * (size_t)s->dim * sizeof(double)) != 0)
     fz_fail("json: surface round trip", NULL);
@@ -55,7 +57,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
   }
   bsfit_curve_free(&c);
   bsfit_surface_init(&s);
-  if (bsfit_surface_from_json((const char *)data, size, &s, NULL, &st) == BSFIT_OK) check_surface(&s);
+  if (bsfit_surface_from_json((const char *)data, size, &s, NULL, &st) == BSFIT_OK)
+    check_surface(&s);
   bsfit_surface_free(&s);
   return 0;
 }

@@ -30,7 +30,10 @@ T.test("default: at most 16 refits, the candidates of largest angle", function()
       for i = 1, #a do sd = sd + (a[i] - mean) ^ 2 end
       sd = math.sqrt(sd / #a)
       local kept, smallest_kept = {}, math.huge
-      for _, i in ipairs(rep.candidates) do kept[i] = true; smallest_kept = math.min(smallest_kept, a[i]) end
+      for _, i in ipairs(rep.candidates) do
+        kept[i] = true
+        smallest_kept = math.min(smallest_kept, a[i])
+      end
       for i = 1, #a do
         if not kept[i] and a[i] > mean + sd / 2 then T.ok(a[i] <= smallest_kept, name) end
       end

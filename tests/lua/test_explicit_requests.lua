@@ -10,8 +10,8 @@ local function sections()
   for name, f in pairs(synth.smooth) do
     for _, m in ipairs { 16, 40, 90 } do
       for _, sigma in ipairs { 0, 0.01 } do
-        out[#out + 1] = { name = ("%s m=%d sigma=%g"):format(name, m, sigma),
-                          P = synth.noisy(synth.sample_smooth(f, m, m % 2 == 0), sigma, m + 3), m = m }
+        local P = synth.noisy(synth.sample_smooth(f, m, m % 2 == 0), sigma, m + 3)
+        out[#out + 1] = { name = ("%s m=%d sigma=%g"):format(name, m, sigma), P = P, m = m }
       end
     end
   end
@@ -23,11 +23,13 @@ T.test("count: above the points or below degree + 1 raises naming the limit", fu
     local st = require("bsfit.strategy." .. s)
     for _, sec in ipairs(sections()) do
       for _, n in ipairs { sec.m + 1, 10 * sec.m, 1000000 } do
-        T.raises(("%s: count %d is more than the %d points allow (at most %d)"):format(s, n, sec.m, sec.m),
+        T.raises(("%s: count %d is more than the %d points allow (at most %d)")
+                   :format(s, n, sec.m, sec.m),
                  function() st.run(sec.P, { count = n }) end)
       end
       for _, p in ipairs { 2, 3 } do
-        T.raises(("%s: count %d is below the minimum for degree %d (at least %d)"):format(s, p, p, p + 1),
+        T.raises(("%s: count %d is below the minimum for degree %d (at least %d)")
+                   :format(s, p, p, p + 1),
                  function() st.run(sec.P, { count = p, degree = p }) end)
       end
     end
@@ -61,7 +63,7 @@ local function max_distance(C, P)
   return mx
 end
 
-T.test("tol: met, no warning and the distance within it; unmet, the best fit and a warning", function()
+T.test("tol: met, no warning and the distance within; unmet, the best fit, a warning", function()
   for _, s in ipairs { "auto", "periodic" } do
     local st = require("bsfit.strategy." .. s)
     for _, sec in ipairs(sections()) do

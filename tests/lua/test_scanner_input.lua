@@ -15,8 +15,9 @@ local function sections()
     for _, m in ipairs { 24, 61, 150 } do
       for _, sigma in ipairs { 0, 0.003 } do
         for seed = 1, 2 do
+          local P = synth.noisy(synth.sample_smooth(f, m, seed == 2), sigma, seed * 7 + m)
           out[#out + 1] = { name = ("%s m=%d sigma=%g seed=%d"):format(name, m, sigma, seed),
-                            pts = synth.noisy(synth.sample_smooth(f, m, seed == 2), sigma, seed * 7 + m):totable() }
+                            pts = P:totable() }
         end
       end
     end
@@ -89,7 +90,7 @@ local function with_repeats(pts, seed)
   return out, first
 end
 
-T.test("repeated consecutive points: every strategy fits, the report is in the input's terms", function()
+T.test("repeated consecutive points: every strategy fits, the report in the input's terms", function()
   for _, s in ipairs(STRATEGIES) do
     local st = require("bsfit.strategy." .. s)
     for i, sec in ipairs(sections()) do

@@ -57,7 +57,8 @@ check_case() { # name want fragment outcheck args...
   [ $rc -ne "$want" ] && why="$why exit $rc, want $want;"
   grep -qF -- "$frag" "$out" "$err" || why="$why message lacks '$frag';"
   grep -q "stack traceback" "$err" && why="$why Lua traceback;"
-  grep -qE '/bsfit/[A-Za-z_/]*\.lua:[0-9]+:' "$err" && why="$why internal file:line of a bsfit module;"
+  grep -qE '/bsfit/[A-Za-z_/]*\.lua:[0-9]+:' "$err" &&
+    why="$why internal file:line of a bsfit module;"
   grep -qE "bad argument #[0-9]+ to '" "$err" && why="$why a Lua argument error;"
   [ -n "$(find "$TMP" -name '*.tmp*' 2>/dev/null)" ] && why="$why temporary file left;"
   case "$outcheck" in

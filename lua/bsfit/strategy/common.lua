@@ -404,18 +404,20 @@ function M.drop_closing_point(P, opts)
   end
   local o = {}
   for k, v in pairs(opts or {}) do o[k] = v end
-  if o.point_weights ~= nil and (type(o.point_weights) == "table" or getmetatable(o.point_weights)) then
-    o.point_weights = head_of(o.point_weights, m - 1)
+  local pw = o.point_weights
+  if pw ~= nil and (type(pw) == "table" or getmetatable(pw)) then
+    o.point_weights = head_of(pw, m - 1)
   end
   notes.dropped_closing_point = true
-  notes.warnings[1] = ("point %d repeats point 1 (a closed section's closing point): dropped"):format(m)
+  notes.warnings[1] = ("point %d repeats point 1 (a closed section's closing point): dropped")
+    :format(m)
   return P:slice(1, m - 1), o, notes
 end
 
--- Merges runs of repeated consecutive points (after M.drop_closing_point) into one point whose weight is the run's (the sum of its
--- point_weights, or its length): the same weighted least-squares problem without
--- coincident points, which the paper's rules (circumradius, averaging knots) cannot
--- take. Returns P, opts and map (map[j] = index in the input of merged point j), or
+-- Merges runs of repeated consecutive points (after M.drop_closing_point) into one
+-- point whose weight is the run's (the sum of its point_weights, or its length): the
+-- same weighted least-squares problem without coincident points, which the paper's
+-- rules (circumradius, averaging knots) cannot take. Returns P, opts and map (map[j] = index in the input of merged point j), or
 -- P, opts, nil when nothing repeats. Adds a warning to notes.
 function M.merge_repeats(P, opts, notes)
   local okm, m = pcall(function() return #P end)
@@ -630,7 +632,8 @@ function M.run(strategy, P, opts, notes)
   if #P < need then
     error(("%s: %d point%s too few for a curve of degree %d (at least %d needed%s)")
           :format(strategy.name, #P, #P == 1 and " is" or "s are", settings.degree, need,
-                  notes and notes.dropped_closing_point and "; the repeated closing point dropped" or ""), 0)
+                  notes and notes.dropped_closing_point and "; the repeated closing point dropped"
+                  or ""), 0)
   end
   if M.all_same(P) then
     error(("%s: all %d points coincide"):format(strategy.name, #P), 0)
