@@ -27,7 +27,8 @@ awk 'BEGIN { n = 10000000; for (i = 0; i < n; i++) { a = 6.283185307179586 * i /
 cp "$T/ten_million.csv" "$T/ten_million_bad_last.csv"
 echo "1,2,oops" >>"$T/ten_million_bad_last.csv"
 truncate -s 2G "$T/sparse_2g.csv"          # all NUL bytes, no line break
-mkdir -p "$T/newline_dir" "$T/empty_dir" "$T/dir_as_file.csv" "$T/dir.json"
+mkdir -p "$T/newline_dir" "$T/empty_dir" "$T/dir.json" "$T/with_subdir/sub.csv"
+cp "$D/circle.csv" "$T/with_subdir/good.csv"
 cp "$D/circle.csv" "$T/newline_dir/$(printf 'scan\nsection.csv')"
 cp "$D/circle.csv" "$T/newline_dir/plain.csv"
 echo "not a directory" >"$T/a_file"
