@@ -54,15 +54,17 @@ static int periodic_known_open(const bsfit_curve *c) {
   return 0;
 }
 
-/* Item 6: elevation near clustered knots (spans below 1e-6 of the domain) is not exact. */
+/* Item 6: elevation near clustered knots (spans below 1e-6 of the domain, or of the
+** knots' magnitude) is not exact. */
 static int elevation_known_open(const bsfit_curve *c) {
   size_t i, nk = c->n + (size_t)c->degree + 1;
-  double a, b;
+  double a, b, big;
   if (!FZ_KNOWN_OPEN) return 0;
   bsfit_knots_domain(c->knots, c->n, c->degree, &a, &b);
+  big = fmax(fabs(c->knots[0]), fabs(c->knots[nk - 1]));
   for (i = 1; i < nk; i++) {
     double h = c->knots[i] - c->knots[i - 1];
-    if (h > 0 && h < 1e-6 * (b - a)) return 1;
+    if (h > 0 && (h < 1e-6 * (b - a) || h < 1e-6 * big)) return 1;
   }
   return 0;
 }
