@@ -60,6 +60,7 @@ static int elevation_known_open(const bsfit_curve *c) {
   size_t i, nk = c->n + (size_t)c->degree + 1;
   double a, b, big;
   if (!FZ_KNOWN_OPEN) return 0;
+  if (c->weights != NULL) return 1; /* rational elevation: weights may turn negative */
   bsfit_knots_domain(c->knots, c->n, c->degree, &a, &b);
   big = fmax(fabs(c->knots[0]), fabs(c->knots[nk - 1]));
   for (i = 1; i < nk; i++) {
