@@ -6,11 +6,13 @@ set -euo pipefail
 
 pkgs=(build-essential cmake pkg-config lua5.4 liblua5.4-dev liblapacke-dev libopenblas-dev)
 if [ "${1:-}" = "--test" ]; then
+  # clang, libclang-rt-14-dev: the libFuzzer targets (tests/fuzz, scripts/fuzz.sh);
   # luarocks: the rockspec test; man-db, groff-base: the man page test;
   # g++ and OpenCASCADE, python3-ezdxf: the CAD exchange readers; librsvg2-bin (rsvg-convert):
   # the pictures test; parallel (GNU parallel) and bsdutils (script): the batch test
   pkgs+=(libcmocka-dev python3-scipy luarocks man-db groff-base g++ libocct-data-exchange-dev
-         libocct-foundation-dev libocct-modeling-data-dev python3-ezdxf librsvg2-bin parallel bsdutils)
+         libocct-foundation-dev libocct-modeling-data-dev python3-ezdxf librsvg2-bin parallel bsdutils
+         clang libclang-rt-14-dev)
 fi
 
 missing=()

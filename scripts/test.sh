@@ -17,3 +17,14 @@ cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Debug -DBSFIT_SANITIZE=ON -DBSFIT_TE
 cmake --build build-asan -j "$jobs"
 (cd build-asan && ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   ctest --output-on-failure -j "$jobs")
+
+# {====================================================================
+# Fuzz smoke (tests/fuzz, scripts/fuzz.sh): builds the libFuzzer targets in build-fuzz/
+# (clang, ASan + UBSan), replays every seed and regression input of each target, then
+# fuzzes each for a few seconds from its corpus. About 2 minutes with the build.
+echo "== fuzz smoke (build-fuzz/: libFuzzer + ASan + UBSan)"
+for t in $(bash scripts/fuzz.sh --list); do
+  bash scripts/fuzz.sh --replay "$t"
+  FUZZ_MAX_LEN=4096 bash scripts/fuzz.sh "$t" "${BSFIT_FUZZ_SMOKE_SECONDS:-5}"
+done
+# }====================================================================

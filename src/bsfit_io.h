@@ -58,8 +58,13 @@ BSFIT_API bsfit_err bsfit_points_parse(const char *text, size_t len, double **xy
                                        bsfit_status *st);
 
 /** Reads a point file; as bsfit_points_parse, messages prefixed with "path:line:".
-** @return the codes of bsfit_points_parse, and BSFIT_EIO (the file cannot be read:
-**         the message gives the path and the system's reason). */
+** The file is read line by line (streaming): memory grows with the points kept, not
+** with the file, and reading stops at the first bad line. A UTF-8 byte order mark
+** before the first line is skipped.
+** @return the codes of bsfit_points_parse, BSFIT_EFORMAT also for a line longer than
+**         64 KiB or holding a NUL byte (binary data: the rest is not read), and
+**         BSFIT_EIO (the file cannot be read, e.g. a directory: the message gives the
+**         path and the system's reason). */
 BSFIT_API bsfit_err bsfit_points_read(const char *path, double **xy, size_t *m, int *dim,
                                       double **w, const bsfit_allocator *a, bsfit_status *st);
 
@@ -343,6 +348,38 @@ BSFIT_API bsfit_err bsfit_surface_to_obj(const bsfit_surface *s, size_t nu, size
 ** @return those codes and bsfit_write_file_atomic's. */
 BSFIT_API bsfit_err bsfit_surface_write_obj(const bsfit_surface *s, size_t nu, size_t nv,
                                             const char *path, bsfit_status *st);
+
+/* }==================================================================== */
+
+/* {====================================================================
+** Directories (no shell: any byte a file name may hold, newlines included)
+** ===================================================================== */
+
+/** What bsfit_path_kind finds at a path (stat(2), links followed). */
+enum { BSFIT_PATH_NONE = 0, BSFIT_PATH_FILE = 1, BSFIT_PATH_DIR = 2, BSFIT_PATH_OTHER = 3 };
+
+/** The names in directory path ("." and ".." left out), sorted by bytes (strcmp).
+** @param[out] names *n NUL-terminated strings, allocated with a; release them with
+**                   bsfit_dir_free(names, n, a). NULL when the directory is empty.
+** @return BSFIT_OK, BSFIT_EINVAL (path NULL or empty), BSFIT_EIO (missing, not a
+**         directory or unreadable: the message gives the path and the system's
+**         reason) or BSFIT_ENOMEM. */
+BSFIT_API bsfit_err bsfit_dir_list(const char *path, char ***names, size_t *n,
+                                   const bsfit_allocator *a, bsfit_status *st);
+
+/** Releases what bsfit_dir_list returned. NULL-safe. */
+BSFIT_API void bsfit_dir_free(char **names, size_t n, const bsfit_allocator *a);
+
+/** BSFIT_PATH_DIR, _FILE (a regular file), _OTHER (a FIFO, a device...) or _NONE
+** (nothing there, or it cannot be looked at). */
+BSFIT_API int bsfit_path_kind(const char *path);
+
+/** Makes directory path and its missing parents (mkdir -p, mode 0777 & ~umask).
+** An existing directory is success.
+** @return BSFIT_OK, BSFIT_EINVAL (path NULL or empty), BSFIT_EIO (a part exists and
+**         is not a directory, or mkdir failed: the message names it) or BSFIT_ENOMEM. */
+BSFIT_API bsfit_err bsfit_dir_make(const char *path, const bsfit_allocator *a,
+                                   bsfit_status *st);
 
 /* }==================================================================== */
 

@@ -72,6 +72,11 @@ end
 -- Writes the requested files of a fitted section.
 function M.write_outputs(spec, P, C, rep, S, w)
   local base = spec.outdir .. "/" .. spec.name
+  -- a repeated closing point was dropped before the fit (rep.dropped_closing_point): the
+  -- picture shows the points the residuals belong to
+  if rep.dropped_closing_point and rep.residuals and #rep.residuals < #P then
+    P = P:slice(1, #rep.residuals)
+  end
   local f = spec.formats
   if f.json then report.must_write(base .. ".json", C:to_json()) end
   for _, ext in ipairs { "iges", "step", "dxf" } do -- CAD exchange, written by C:write

@@ -36,6 +36,7 @@ typedef struct cli {
   char **argv;
   int script;         /* index of the script or subcommand in argv, or 0 */
   int flags;
+  int debug;          /* --debug: messages keep their Lua traceback */
   int status;         /* the process exit status pmain decides */
   bsfit_engine *e;
   bsfit_engine_opts opts;
@@ -70,6 +71,7 @@ static void print_usage(FILE *f) {
           "  --sandbox        run without io, os, debug, C modules and bytecode\n"
           "  --mem-limit N    cap the Lua heap at N bytes (suffixes k, m, g)\n"
           "  --instr-limit N  stop any call after N Lua instructions (e.g. 1e8)\n"
+          "  --debug          print the Lua traceback with an error message\n"
           "  --version        print the version and exit\n"
           "  -h, --help       print this help and exit (COMMAND --help: the command's)\n"
           "  --               stop handling options\n"
@@ -88,10 +90,13 @@ static void print_version(void) {
   fflush(stdout);
 }
 
-/* Reports a failed engine call; returns 0 so callers can `return report(...)`. */
+/* Reports a failed engine call; returns 0 so callers can `return report(...)`. The
+** traceback the engine appends is for developers: printed with --debug only. */
 static int report(cli *c, bsfit_err code) {
   if (code != BSFIT_OK) {
-    l_message(bsfit_engine_errmsg(c->e));
+    const char *msg = bsfit_engine_errmsg(c->e), *tb = strstr(msg, "\nstack traceback:");
+    if (tb != NULL && !c->debug) fprintf(stderr, "%s: %.*s\n", PROGNAME, (int)(tb - msg), msg);
+    else l_message(msg);
     c->status = EXIT_FAILURE;
     return 0;
   }
@@ -134,6 +139,7 @@ static int long_option(cli *c, int *i) {
   if (strcmp(o, "--help") == 0) c->flags |= HAS_HELP;
   else if (strcmp(o, "--version") == 0) c->flags |= HAS_VERSION;
   else if (strcmp(o, "--sandbox") == 0) c->opts.sandbox = 1;
+  else if (strcmp(o, "--debug") == 0) c->debug = 1;
   else if (strcmp(o, "--mem-limit") == 0 || strcmp(o, "--instr-limit") == 0) {
     size_t v;
     if (argv[*i + 1] == NULL || (v = parse_size(argv[*i + 1])) == 0) return 0;

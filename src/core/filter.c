@@ -257,6 +257,8 @@ bsfit_err bsfit_filter_box_curve(const bsfit_curve *c, int k, bsfit_curve *out,
   e = c->periodic ? bsfit__filter_ma_periodic(&v, k, &a, &f, st)
                   : bsfit__filter_ma_open(&v, k, &a, &f, st);
   if (e != BSFIT_OK) return e;
+  /* validated (give_curve): a minimal period may not hold the curve of degree p + 1, and
+  ** knots of a uniform curve far from 0 (spacing near their ulp) may coincide once shifted */
   return give_curve(&f, c->dim, c->periodic, &a, out, st);
 }
 

@@ -51,6 +51,18 @@ bsfit_err bsfit__curve_clamped(const bsfit_curve *c, bsfit_curve *out, const bsf
 bsfit_err bsfit__surface_clamped(const bsfit_surface *s, bsfit_surface *out,
                                  const bsfit_allocator *al, bsfit_status *st);
 
+/* Called with each line of a file (1-based number, text without its '\n'). */
+typedef bsfit_err (*bsfit__line_fn)(void *ud, size_t line, const char *p, size_t n,
+                                    bsfit_status *st);
+
+/* Reads the file at path line by line through a window of 2 * maxline bytes
+** (allocated with a), calling fn on each line; stops at fn's first error. A line
+** longer than maxline fails (EFORMAT, "path:N: line longer than ..."): a file with no
+** line breaks is not read to its end. @return BSFIT_OK, fn's error, BSFIT_EINVAL
+** (path NULL), BSFIT_EIO (the path and the system's reason), BSFIT_EFORMAT, ENOMEM. */
+bsfit_err bsfit__read_lines(const char *path, size_t maxline, const bsfit_allocator *a,
+                            bsfit__line_fn fn, void *ud, bsfit_status *st);
+
 /* {======================================================================
 ** A strict JSON reader (io_jsonparse.c), pull style: the caller walks the document
 ** it expects, and every error names the byte offset. Errors are EFORMAT unless said.

@@ -36,12 +36,21 @@ typedef struct reader {
 
 static bsfit_err fail_at(reader *r, bsfit_status *st, bsfit_err code, const char *what,
                          const field *f) {
-  int n = f ? (int)(f->n > 40 ? 40 : f->n) : 0;
-  if (r->name)
-    return bsfit__fail(st, code, "%s:%zu: %s%s%.*s%s", r->name, r->line, what, f ? " '" : "", n,
-                       f ? f->p : "", f ? "'" : "");
-  return bsfit__fail(st, code, "line %zu: %s%s%.*s%s", r->line, what, f ? " '" : "", n,
-                     f ? f->p : "", f ? "'" : "");
+  char q[48]; /* the field quoted, at most 40 bytes, non-ASCII and control bytes as '?' */
+  size_t i, n = f ? (f->n > 40 ? 40 : f->n) : 0;
+  q[0] = '\0';
+  if (f) {
+    q[0] = ' ';
+    q[1] = '\'';
+    for (i = 0; i < n; i++) {
+      unsigned char c = (unsigned char)f->p[i];
+      q[2 + i] = (c < 0x20 || c >= 0x7f) ? '?' : (char)c;
+    }
+    q[2 + n] = '\'';
+    q[3 + n] = '\0';
+  }
+  if (r->name) return bsfit__fail(st, code, "%s:%zu: %s%s", r->name, r->line, what, q);
+  return bsfit__fail(st, code, "line %zu: %s%s", r->line, what, q);
 }
 
 static void release(reader *r) {
@@ -165,7 +174,10 @@ static bsfit_err read_header(reader *r, const field *f, int k, bsfit_status *st)
   for (i = 0; i < NCOLS; i++) r->col[i] = -1;
   for (i = 0; i < k; i++) {
     int id = column_id(&f[i]);
-    if (id < 0) return fail_at(r, st, BSFIT_EFORMAT, "unknown column name", &f[i]);
+    if (id < 0)
+      return fail_at(r, st, BSFIT_EFORMAT,
+                     memchr(f[i].p, ',', f[i].n) ? "not a number (a decimal comma? write 1.5):"
+                                                 : "unknown column name", &f[i]);
     if (r->col[id] >= 0) return fail_at(r, st, BSFIT_EFORMAT, "repeated column", &f[i]);
     r->col[id] = i;
   }
@@ -188,7 +200,10 @@ static bsfit_err read_row(reader *r, const field *f, int k, bsfit_status *st) {
     const field *fi;
     if (r->col[i] < 0) continue;
     fi = &f[r->col[i]];
-    if (!to_number(fi, &v[i])) return fail_at(r, st, BSFIT_EFORMAT, "not a number:", fi);
+    if (!to_number(fi, &v[i]))
+      return fail_at(r, st, BSFIT_EFORMAT,
+                     memchr(fi->p, ',', fi->n) ? "not a number (a decimal comma? write 1.5):"
+                                               : "not a number:", fi);
     if (!isfinite(v[i])) return fail_at(r, st, BSFIT_ENONFINITE, "not a finite number:", fi);
   }
   if (!(v[COL_W] > 0))
@@ -209,12 +224,32 @@ static int looks_like_header(const field *f, int k) {
   return 1;
 }
 
+/* A control byte other than blanks means binary data: say so rather than quote it. */
+static bsfit_err check_text(reader *r, const char *p, size_t n, bsfit_status *st) {
+  size_t i;
+  for (i = 0; i < n; i++) {
+    unsigned char c = (unsigned char)p[i];
+    if ((c < 0x20 && !is_blank((char)c)) || c == 0x7f) {
+      char what[80];
+      snprintf(what, sizeof what, "binary data (byte 0x%02x at column %zu): not a point file",
+               c, i + 1);
+      return fail_at(r, st, BSFIT_EFORMAT, what, NULL);
+    }
+  }
+  return BSFIT_OK;
+}
+
 static bsfit_err read_line(reader *r, const char *p, size_t n, bsfit_status *st) {
   field f[MAX_FIELDS];
-  const char *hash = memchr(p, '#', n);
-  field t = trim(p, hash ? (size_t)(hash - p) : n);
+  const char *hash;
+  field t;
   int k;
   bsfit_err e;
+  if (r->line == 1 && n >= 3 && memcmp(p, "\xEF\xBB\xBF", 3) == 0) p += 3, n -= 3; /* UTF-8 BOM */
+  e = check_text(r, p, n, st);
+  if (e != BSFIT_OK) return e;
+  hash = memchr(p, '#', n);
+  t = trim(p, hash ? (size_t)(hash - p) : n);
   if (t.n == 0) return BSFIT_OK;
   k = split(t.p, t.n, f);
   if (r->ncol == 0) {
@@ -225,19 +260,17 @@ static bsfit_err read_line(reader *r, const char *p, size_t n, bsfit_status *st)
   return read_row(r, f, k, st);
 }
 
+/* The bsfit__line_fn of the file reader. */
+static bsfit_err on_line(void *ud, size_t line, const char *p, size_t n, bsfit_status *st) {
+  reader *r = (reader *)ud;
+  r->line = line;
+  return read_line(r, p, n, st);
+}
+
 /* }==================================================================== */
 
-static bsfit_err parse(reader *r, const char *text, size_t len, bsfit_status *st) {
-  size_t i = 0;
-  while (i < len) {
-    const char *nl = memchr(text + i, '\n', len - i);
-    size_t n = nl ? (size_t)(nl - (text + i)) : len - i;
-    bsfit_err e;
-    r->line++;
-    e = read_line(r, text + i, n, st);
-    if (e != BSFIT_OK) return e;
-    i += n + 1;
-  }
+/* After the last line: at least one point, arrays shrunk to size. */
+static bsfit_err finish(reader *r, bsfit_status *st) {
   if (r->m == 0) {
     if (r->name) return bsfit__fail(st, BSFIT_ETOOFEW, "%s: no data points", r->name);
     return bsfit__fail(st, BSFIT_ETOOFEW, "no data points");
@@ -246,6 +279,22 @@ static bsfit_err parse(reader *r, const char *text, size_t len, bsfit_status *st
   return bsfit__ok(st);
 }
 
+static bsfit_err parse_text(reader *r, const char *text, size_t len, bsfit_status *st) {
+  size_t i = 0;
+  while (i < len) {
+    const char *nl = memchr(text + i, '\n', len - i);
+    size_t n = nl ? (size_t)(nl - (text + i)) : len - i;
+    bsfit_err e = on_line(r, r->line + 1, text + i, n, st);
+    if (e != BSFIT_OK) return e;
+    i += n + 1;
+  }
+  return finish(r, st);
+}
+
+/* Longest line of a point file: four numbers need < 100 bytes; comments may be long. */
+#define MAX_LINE 65536
+
+/* Reads from the file `name` when text is NULL, else parses the len bytes of text. */
 static bsfit_err parse_named(const char *name, const char *text, size_t len, double **xy,
                              size_t *m, int *dim, double **w, const bsfit_allocator *a,
                              bsfit_status *st) {
@@ -257,12 +306,18 @@ static bsfit_err parse_named(const char *name, const char *text, size_t len, dou
   *m = 0;
   *dim = 0;
   if (w) *w = NULL;
-  if (text == NULL && len > 0) return bsfit__fail(st, BSFIT_EINVAL, "no text to parse");
+  if (name == NULL && text == NULL && len > 0)
+    return bsfit__fail(st, BSFIT_EINVAL, "no text to parse");
   memset(&r, 0, sizeof r);
   r.name = name;
   r.a = a;
   r.dim = 2;
-  e = parse(&r, text, len, st);
+  if (name != NULL) {
+    e = bsfit__read_lines(name, MAX_LINE, a, on_line, &r, st);
+    if (e == BSFIT_OK) e = finish(&r, st);
+  } else {
+    e = parse_text(&r, text, len, st);
+  }
   if (e != BSFIT_OK) {
     release(&r);
     return e;
@@ -285,15 +340,10 @@ bsfit_err bsfit_points_parse(const char *text, size_t len, double **xy, size_t *
 
 bsfit_err bsfit_points_read(const char *path, double **xy, size_t *m, int *dim, double **w,
                             const bsfit_allocator *a, bsfit_status *st) {
-  bsfit__buf b;
-  bsfit_err e;
   if (xy) *xy = NULL;
   if (w) *w = NULL;
-  bsfit__buf_init(&b, a);
-  e = bsfit__read_file(path, &b, st);
-  if (e == BSFIT_OK) e = parse_named(path, b.data, b.len, xy, m, dim, w, a, st);
-  bsfit__buf_free(&b);
-  return e;
+  if (path == NULL) return bsfit__fail(st, BSFIT_EINVAL, "no file name to read");
+  return parse_named(path, NULL, 0, xy, m, dim, w, a, st);
 }
 
 void bsfit_points_free(double *xy, size_t m, int dim, double *w, const bsfit_allocator *a) {

@@ -116,6 +116,10 @@ size_t bsfit_knots_place_count(bsfit_knot_rule rule, int p, size_t n) {
   return bsfit_knot_rule_closed(rule) ? n + 1 : n + (size_t)p + 1;
 }
 
+/* x + a (y - x): exactly x when y == x (repeated parameters: (1 - a) x + a x can be
+** an ulp off x, and knots placed between repeats then decrease) */
+static double lerp(double x, double y, double a) { return x + a * (y - x); }
+
 /* NURBS Book eq. 9.68-9.69: interior knot j sits at fractional index j d - 1 */
 static void place_averaging(const double *u, size_t m, int p, size_t n, double *U) {
   size_t j, P = (size_t)p;
@@ -128,7 +132,7 @@ static void place_averaging(const double *u, size_t m, int p, size_t n, double *
     double t = (double)j * d;
     size_t i = (size_t)t;
     double a = t - (double)i;
-    U[P + j] = (1.0 - a) * u[i - 1] + a * u[i];
+    U[P + j] = lerp(u[i - 1], u[i], a);
   }
 }
 
@@ -145,7 +149,7 @@ static void place_carvalho(const double *u, size_t m, size_t N, double *T) {
     double t = (double)k * d;
     size_t i = (size_t)t;
     double a = t - (double)i;
-    T[k] = (1.0 - a) * u[i - 1] + a * u[i];
+    T[k] = lerp(u[i - 1], u[i], a);
   }
   T[N] = u[0] + 1.0;
 }
@@ -162,7 +166,7 @@ static void place_periodic_averaging(const double *u, size_t m, int p, size_t N,
     double t = (double)k * d + c;
     size_t i = (size_t)t;
     double a = t - (double)i;
-    T[k] = a == 0.0 ? ucyc(u, m, i) : (1.0 - a) * ucyc(u, m, i) + a * ucyc(u, m, i + 1);
+    T[k] = a == 0.0 ? ucyc(u, m, i) : lerp(ucyc(u, m, i), ucyc(u, m, i + 1), a);
   }
   T[N] = T[0] + 1.0;
 }
@@ -209,6 +213,7 @@ static bsfit_err check_period_mult(const double *T, size_t N, int p, bsfit_statu
 
 bsfit_err bsfit__knots_place_rule(bsfit_knot_rule rule, const double *u, size_t m, int p,
                                   size_t n, double *U, bsfit_status *st) {
+  size_t k;
   bsfit_err e = check_place_args(rule, u, m, p, n, U, st);
   if (e != BSFIT_OK) return e;
   switch (rule) {
@@ -218,6 +223,8 @@ bsfit_err bsfit__knots_place_rule(bsfit_knot_rule rule, const double *u, size_t 
     case BSFIT_KNOTS_PERIODIC_AVERAGING: place_periodic_averaging(u, m, p, n, U); break;
     default: place_periodic_uniform(u, n, U); break;
   }
+  for (k = 1; k < bsfit_knots_place_count(rule, p, n); k++) /* rounding never decreases */
+    if (U[k] < U[k - 1]) U[k] = U[k - 1];
   if (bsfit_knot_rule_closed(rule)) return check_period_mult(U, n, p, st);
   return bsfit_knots_validate(U, n + (size_t)p + 1, p, n, st);
 }

@@ -211,6 +211,7 @@ void bsfit__lua_lib_points(lua_State *L);
 void bsfit__lua_lib_vector(lua_State *L);
 void bsfit__lua_lib_knots(lua_State *L);
 void bsfit__lua_lib_curve(lua_State *L);
+void bsfit__lua_lib_io(lua_State *L); /* lio.c: bs.io (absent when sandboxed) */
 void bsfit__lua_lib_bezier(lua_State *L);
 /* these set their fields (bs.params, bs.geom, ...) in the module table on the top */
 void bsfit__lua_lib_geom(lua_State *L);

@@ -29,8 +29,8 @@ static const sublib sublibs[] = {
 static const lib_fn setters[] = {
   bsfit__lua_lib_geom,   bsfit__lua_lib_weights, bsfit__lua_lib_fitter,
   bsfit__lua_lib_filter, bsfit__lua_lib_surface, bsfit__lua_lib_svg,
-  bsfit__lua_lib_auto,   bsfit__lua_lib_exchange, bsfit__lua_lib_skin, bsfit__lua_lib_scan,
-  bsfit__lua_lib_features, NULL};
+  bsfit__lua_lib_auto,   bsfit__lua_lib_io,      bsfit__lua_lib_exchange, bsfit__lua_lib_skin,
+  bsfit__lua_lib_scan,   bsfit__lua_lib_features, NULL};
 
 /* bs.errname(code) --> "ESINGULAR": the names the fail triple carries */
 static int l_errname(lua_State *L) {

@@ -64,7 +64,9 @@ run "$TMP/halfway.lua"
 check "erroring script: exit 1" '[ $rc -eq 1 ]'
 check "erroring script: lines before the error ran, not after" 'has out "before" && ! has out "after"'
 check "erroring script: file:line on stderr" 'has err "halfway.lua:2: attempt to index a nil value"'
-check "erroring script: traceback on stderr" 'has err "stack traceback:" && has err "halfway.lua:3: in main chunk"'
+check "erroring script: no traceback without --debug" '! has err "stack traceback:"'
+run --debug "$TMP/halfway.lua"
+check "erroring script: traceback on stderr with --debug" 'has err "stack traceback:" && has err "halfway.lua:3: in main chunk"'
 
 # syntax error and missing file
 printf 'x = = 1\n' >"$TMP/syntax.lua"
@@ -99,7 +101,9 @@ cat >"$TMP/lua/bsfit/cli/broken.lua" <<'LUA'
 return { main = function(args) error("broken subcommand") end }
 LUA
 BSFIT_PATH="$TMP/lua" "$BSFIT" broken >"$TMP/out" 2>"$TMP/err"; rc=$?
-check "failing subcommand: exit 1 with file:line and traceback" '[ $rc -eq 1 ] && has err "broken.lua:1: broken subcommand" && has err "stack traceback:"'
+check "failing subcommand: exit 1 with file:line, no traceback" '[ $rc -eq 1 ] && has err "broken.lua:1: broken subcommand" && ! has err "stack traceback:"'
+BSFIT_PATH="$TMP/lua" "$BSFIT" --debug broken >"$TMP/out" 2>"$TMP/err"; rc=$?
+check "failing subcommand with --debug: traceback" '[ $rc -eq 1 ] && has err "stack traceback:"'
 
 # limits and sandbox flags
 run --instr-limit 100000 -e 'while true do pcall(function() while true do end end) end'
@@ -110,7 +114,7 @@ run --sandbox -e 'print(io, os, debug, dofile, require("bsfit") ~= nil)'
 check "--sandbox: no io, os, debug, dofile; bsfit still there" '[ $rc -eq 0 ] && has out "nil	nil	nil	nil	true"'
 
 # Ctrl-C (SIGINT) stops a running script with a message, exit 1
-"$BSFIT" -e 'while true do end' >"$TMP/out" 2>"$TMP/err" &
+"$BSFIT" --debug -e 'while true do end' >"$TMP/out" 2>"$TMP/err" &
 pid=$!
 sleep 0.5
 kill -INT "$pid"

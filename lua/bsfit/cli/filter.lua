@@ -73,24 +73,30 @@ function M.parse(args)
   return o
 end
 
+-- A filter fn(C, arg), its refusals (raised as misuse: the binding's argument errors)
+-- turned into the plain reason a command-line user can act on
+local function call(fn, C, arg)
+  local ok, F, msg = pcall(fn, C, arg)
+  if not ok then
+    local reason = tostring(F):match("bad argument #%d+ to '[^']*' %((.*)%)$")
+    error(reason or tostring(F), 0)
+  end
+  if not F then error(msg, 0) end
+  return F, msg
+end
+
+local function box(C, arg) return (call(bs.filter.box, C, arg)) end
+
 -- filters C as asked; returns the filtered curve and, with --tol, the smoothing report
 -- (raises on failure)
 function M.filter(C, o)
-  local F, msg
   if o.tol then
-    F, msg = bs.filter.smooth(C, { tol = o.tol, order = o.order, degree = o.degree })
-    if not F then error(msg, 0) end
-    return F, msg
-  elseif o.delta then
-    F, msg = bs.filter.box(C, { delta = o.delta })
-  elseif C:is_uniform() then
-    F, msg = bs.filter.box(C, o.k)
-  else
-    local a, b = C:domain()
-    F, msg = bs.filter.box(C, { delta = o.k * (b - a) / (C:count() - C:degree()) / 2 })
+    return call(bs.filter.smooth, C, { tol = o.tol, order = o.order, degree = o.degree })
   end
-  if not F then error(msg, 0) end
-  return F
+  if o.delta then return box(C, { delta = o.delta }) end
+  if C:is_uniform() then return box(C, o.k) end
+  local a, b = C:domain()
+  return box(C, { delta = o.k * (b - a) / (C:count() - C:degree()) / 2 })
 end
 
 -- Before (blue, wide) and after (vermilion, narrower, on top): both visible where they

@@ -7,6 +7,7 @@
 -- numbers are measured). Exit status: 0 merged, 1 a directory could not be read or the
 -- shards do not belong together, 2 usage error.
 
+local bs = require "bsfit"
 local report = require "bsfit.report"
 local rc = require "bsfit.cli.reconstruct"
 
@@ -24,7 +25,6 @@ usage: bsfit merge OUT DIR1 [DIR2 ...]
 local generated = { ["summary.csv"] = true, ["summary.json"] = true, ["timing.csv"] = true,
                     ["index.html"] = true }
 
-local function shell_quote(s) return "'" .. s:gsub("'", "'\\''") .. "'" end
 
 local function slurp(path)
   local f, err = io.open(path, "rb")
@@ -57,15 +57,16 @@ local function read_timing(dir)
 end
 
 -- Copies the per-section files of dir into out (not the generated ones).
+-- (Listed in C, not through a shell: any name, a newline in it too.)
 local function copy_files(dir, out)
-  local p = io.popen("ls -1A -- " .. shell_quote(dir) .. " 2>/dev/null")
-  for name in p:lines() do
-    if not generated[name] and not name:match("%.tmp$") then
+  local names, err = bs.io.listdir(dir)
+  if not names then error(err, 0) end
+  for _, name in ipairs(names) do
+    if not generated[name] and not name:match("%.tmp$") and bs.io.kind(dir .. "/" .. name) == "file" then
       local data = slurp(dir .. "/" .. name)
       if data then report.must_write(out .. "/" .. name, data) end
     end
   end
-  p:close()
 end
 
 -- Raises unless the shards' summaries (array of {dir, shard}) are shards of one job,
@@ -150,7 +151,7 @@ function M.main(args)
   local out, dirs = args[1], table.move(args, 2, #args, 1, {})
   local ok, err = pcall(function()
     local rows, meta = M.rows(dirs)
-    os.execute("mkdir -p " .. shell_quote(out))
+    assert(bs.io.mkdir(out))
     for _, dir in ipairs(dirs) do
       if dir:gsub("/+$", "") ~= out:gsub("/+$", "") then copy_files(dir, out) end
     end

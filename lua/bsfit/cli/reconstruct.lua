@@ -26,8 +26,10 @@ usage: bsfit reconstruct [INPUT...] [options]
   -o OUTDIR        output directory (default bsfit-out)
   --strategy S     auto | carvalho | periodic | FILE.lua (default auto)
   --degree P       curve degree (default 3)
-  --count N|auto   control points (default auto: the paper's inversion / 50% rule)
+  --count N|auto   control points (default auto: the paper's inversion / 50% rule);
+                   more than the points allow is an error naming the limit
   --tol T          auto, periodic: add control points until the max deviation is <= T
+                   (not met: the best fit, and a warning on stderr and in the summary)
   --open           fit open curves (auto and periodic strategies)
   --closed         fit closed curves (auto decides from the data when neither is given)
   --smooth-tol T   then smooth each curve as much as possible within distance T
@@ -68,6 +70,7 @@ local function parse_formats(s)
     if not formats_known[name] then error(("unknown format '%s' (json, svg, csv, iges, step, dxf)"):format(name), 0) end
     f[name] = true
   end
+  if next(f) == nil then error("--format needs at least one of json, svg, csv, iges", 0) end
   return f
 end
 
@@ -75,7 +78,10 @@ end
 local flags = {
   ["-o"] = function(o, v) o.outdir = v end,
   ["--strategy"] = function(o, v) o.strategy = v end,
-  ["--degree"] = function(o, v) o.degree = positive_integer(v, "--degree") end,
+  ["--degree"] = function(o, v)
+    o.degree = positive_integer(v, "--degree")
+    if o.degree > 30 then error("--degree must be at most 30 (BSFIT_MAX_DEGREE)", 0) end
+  end,
   ["--count"] = function(o, v) o.count = v ~= "auto" and positive_integer(v, "--count") or nil end,
   ["--tol"] = function(o, v)
     o.tol = tonumber(v)
@@ -153,33 +159,22 @@ end
 -- Inputs
 -- =======================================================================
 
-local function shell_quote(s) return "'" .. s:gsub("'", "'\\''") .. "'" end
-
--- True when path names a directory (reading it fails with EISDIR).
-local function is_dir(path)
-  local f = io.open(path, "rb")
-  if not f then return false end
-  local _, _, code = f:read(1)
-  f:close()
-  return code == 21
-end
+-- True when path names a directory (bs.io.kind: stat, no shell).
+local function is_dir(path) return bs.io.kind(path) == "directory" end
 
 local point_ext = { csv = true, txt = true, xy = true, xyz = true, dat = true, pts = true }
 
--- The point files of a directory, sorted by name.
+-- The point files of a directory, sorted by name (bs.io.listdir: any byte a name may
+-- hold, newlines included). Raises with the system's reason when it cannot be listed.
 local function list_dir(dir)
-  local p = io.popen("ls -1A -- " .. shell_quote(dir) .. " 2>/dev/null")
-  local files = {}
-  if p then
-    for name in p:lines() do
-      local ext = name:match("%.([%w]+)$")
-      if ext and point_ext[ext:lower()] and not is_dir(dir .. "/" .. name) then
-        files[#files + 1] = dir:gsub("/+$", "") .. "/" .. name
-      end
-    end
-    p:close()
+  local names, err = bs.io.listdir(dir)
+  if not names then error(err, 0) end
+  local files, base = {}, dir:gsub("/+$", "") -- "/" becomes "": paths "/name"
+  for _, name in ipairs(names) do
+    local ext = name:match("%.([%w]+)$")
+    local path = base .. "/" .. name
+    if ext and point_ext[ext:lower()] and not is_dir(path) then files[#files + 1] = path end
   end
-  table.sort(files)
   return files
 end
 
@@ -202,7 +197,17 @@ function M.demo_dir()
   return up .. "/tests/data/demo"
 end
 
--- Input sections: {path = ..., name = ...}, names made unique by a suffix.
+-- The section name of a path: its last component without the extension.
+local function section_name(p)
+  local base = (p:gsub("/+$", ""):match("([^/]*)$") or ""):gsub("%.[^.]*$", "")
+  base = base:gsub("[%c]", "_") -- a newline in a name would break the summary's lines
+  return base ~= "" and base or "section"
+end
+
+-- Input sections: {path = ..., name = ...}, names made unique by a suffix. A path
+-- that names nothing, or ends with '/' but is no directory, stays an input: its
+-- section fails with the system's reason and the others still run. Raises when a
+-- directory cannot be listed.
 function M.inputs(list)
   local paths = {}
   if #list == 0 then list = { M.demo_dir() } end
@@ -217,8 +222,7 @@ function M.inputs(list)
   end
   local seen, out = {}, {}
   for _, p in ipairs(paths) do
-    local base = p:match("([^/]+)$"):gsub("%.[^.]*$", "")
-    if base == "" then base = "section" end
+    local base = section_name(p)
     local name, k = base, 1
     while seen[name] do k = k + 1; name = base .. "_" .. k end
     seen[name] = true
@@ -250,6 +254,31 @@ local function strategy_opts(spec, w)
   return o
 end
 
+-- A hint for a section that failed: coordinates so large that squared distances
+-- overflow a double (every strategy measures them) fail deep inside a step with a
+-- message about that step. Looked at only after a failure (one C pass over P).
+local function magnitude_hint(P)
+  local v = bs.vector.frombytes(P:bytes())
+  local big = math.max(math.abs(v:max()), math.abs(v:min()))
+  if big > 1e150 then
+    return (" (coordinates up to %.3g: too large to square in double precision; scale the section)")
+      :format(big)
+  end
+  return ""
+end
+
+-- A strategy's refusal as a user reads it: a binding's argument error raised inside a
+-- shipped module ("…/bsfit/strategy/auto.lua:174: bad argument #1 to 'breaks' (40
+-- points leave too few knot spans for degree 20)") is the section not suiting the
+-- strategy: its reason, without the module's file:line and the argument number.
+-- Anything else (a bug: "attempt to index a nil value") is kept whole.
+local function user_message(strategy, err)
+  err = tostring(err)
+  local reason = err:match("^[^\n]-/bsfit/[%w_/]+%.lua:%d+: bad argument #%d+ to '[^']*' %((.*)%)$")
+  if reason then return ("%s: %s"):format(strategy, reason) end
+  return err
+end
+
 -- Fits one section and writes its files. spec: path, name, outdir, strategy,
 -- degree, count, tol, open, samples, formats. Never raises: returns the summary
 -- row, with status "error" and the message when something failed.
@@ -260,8 +289,9 @@ function M.section(spec)
     local P, w = bs.points.read(spec.path)
     if not P then error(tostring(w), 0) end
     row.points = #P
-    local C, rep = load_strategy(spec.strategy).run(P, strategy_opts(spec, w))
-    if not C then error(tostring(rep), 0) end
+    local okr, C, rep = pcall(load_strategy(spec.strategy).run, P, strategy_opts(spec, w))
+    if not okr then error(user_message(spec.strategy, C) .. magnitude_hint(P), 0) end
+    if not C then error(tostring(rep) .. magnitude_hint(P), 0) end
     row.control_points = C:distinct()
     row.rms, row.max, row.max_index = rep.rms, rep.max, rep.max_index
     row.max_trusted = rep.max_trusted -- set when the file down-weights some points
@@ -478,12 +508,13 @@ function M.main(args)
   if o.help then io.stdout:write(M.usage); return 0 end
   local okl, lerr = pcall(load_strategy, o.strategy)
   if not okl then warn("%s", tostring(lerr)); return 2 end
-  local all = M.inputs(o.inputs)
+  local oki, all = pcall(M.inputs, o.inputs)
+  if not oki then warn("%s", tostring(all)); return 2 end
   local inputs = M.shard(all, o.shard)
   if o.shard then o.shard.total = #all end
   if #inputs == 0 and not o.shard then warn("no input sections"); return 2 end
-  os.execute("mkdir -p " .. shell_quote(o.outdir))
-  if not is_dir(o.outdir) then warn("cannot create output directory %s", o.outdir); return 2 end
+  local okd, derr = bs.io.mkdir(o.outdir)
+  if not okd then warn("%s", tostring(derr)); return 2 end
   local rows, seconds = run(o, specs_of(o, inputs))
   local okw, werr = pcall(M.write_summaries, o.outdir, o, rows)
   if not okw then warn("%s", tostring(werr)); return 1 end

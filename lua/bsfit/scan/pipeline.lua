@@ -244,8 +244,8 @@ end
 function M.run(input, opts)
   local ctx = M.context(opts)
   local t0 = clock()
-  if ctx.outdir and os and os.execute then -- the output directory, made when missing
-    os.execute("mkdir -p '" .. ctx.outdir:gsub("'", "'\\''") .. "'")
+  if ctx.outdir and bs.io and bs.io.mkdir then -- the output directory, made when missing
+    assert(bs.io.mkdir(ctx.outdir))
   end
   local scan = ctx.read(input, ctx)
   -- options the scan cannot honour are errors, never silently ignored

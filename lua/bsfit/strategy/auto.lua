@@ -662,7 +662,7 @@ end
 
 -- }======================================================================
 
-function M.run(P, opts) return common.run(M, P, opts) end
+function M.run(P, opts) return common.run(M, common.drop_closing_point(P, opts)) end
 
 -- The report: the common fields plus what this strategy chose.
 function M.report(ctx)

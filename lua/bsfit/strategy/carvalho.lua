@@ -12,10 +12,13 @@
 -- or a plain value taken as the step's result, e.g. {count = 24}); settings:
 -- degree (3), param ("chord"), point_weights (per-point weights multiplied into
 -- the weighting rule's), closed (true; false raises), solver ("cholesky", the
--- paper's normal equations; "qr" or "auto": see bs.fitter). Unknown names raise.
+-- paper's normal equations; "qr" or "auto": see bs.fitter), candidates (16: at most
+-- that many start-point candidates are refitted, those of largest angle; "all" for
+-- the paper's literal search, one refit per qualifying point). Unknown names raise.
 -- rep: points, count, inflections, weights (Vector), start_index (1-based index
 -- of the input point the curve starts at), candidates (indices tried), candidate_dt
--- (dt_1 + dt_2 of each), rms, max, max_index, residuals (closest-point distances
+-- (dt_1 + dt_2 of each), candidates_tried (#candidates), candidates_found (how many
+-- points qualified), rms, max, max_index, residuals (closest-point distances
 -- of the input points, input order), times (ms per step), total_ms.
 
 local bs = require "bsfit"
@@ -23,7 +26,14 @@ local common = require "bsfit.strategy.common"
 
 local M = { name = "carvalho" }
 
-M.settings = { degree = 3, param = "chord", closed = true, solver = "cholesky" }
+-- The report: the common fields, and how many start-point candidates qualified.
+function M.report(ctx)
+  local rep = common.report(ctx)
+  rep.candidates_found = ctx.candidates_found
+  return rep
+end
+
+M.settings = { degree = 3, param = "chord", closed = true, solver = "cholesky", candidates = 16 }
 M.optional = { point_weights = true }
 
 M.order = { "params", "weights", "count", "knots", "fit", "close", "start", "tangent", "measure" }
@@ -82,9 +92,22 @@ end
 -- Start point (SPEC 2.6) and tangent correction (SPEC 2.7)
 -- =======================================================================
 
+-- The setting `candidates`: a count >= 1, or "all" (math.huge).
+local function candidate_limit(v)
+  if v == "all" then return math.huge end
+  if math.type(v) ~= "integer" or v < 1 then
+    error("bad argument #2 to 'run' (option 'candidates' must be an integer >= 1 or \"all\")", 0)
+  end
+  return v
+end
+
 -- Candidates: the points whose angle exceeds mean + std/2 (population std);
--- when none does (all angles equal), the first point of largest angle.
-function M.candidates(P)
+-- when none does (all angles equal), the first point of largest angle. Each is a
+-- refit of the whole section, so at most `limit` of them (the largest angles, ties
+-- by index) are kept: the paper's literal search (limit = math.huge) costs m refits
+-- on a section of m points. Returns the kept indices, increasing, and how many
+-- points qualified.
+function M.candidates(P, limit)
   local a = bs.geom.angles(P, { closed = true }):totable()
   local mean, std = common.mean_std(a)
   local c, best = {}, 1
@@ -93,7 +116,13 @@ function M.candidates(P)
     if a[i] > a[best] then best = i end
   end
   if #c == 0 then c[1] = best end
-  return c
+  local found = #c
+  if limit and #c > limit then
+    table.sort(c, function(i, j) return a[i] > a[j] or (a[i] == a[j] and i < j) end)
+    for k = #c, limit + 1, -1 do c[k] = nil end
+    table.sort(c)
+  end
+  return c, found
 end
 
 -- dt_1 + dt_2: distances of control points P_1, P_2 of the closed curve C from
@@ -123,7 +152,9 @@ end
 -- Returns the chosen 1-based index; ctx.curve becomes that candidate's curve and
 -- ctx.start_points the rotated points.
 function steps.start(P, ctx)
-  local cand, dts = M.candidates(P), {}
+  local cand, found = M.candidates(P, candidate_limit(ctx.settings.candidates))
+  local dts = {}
+  ctx.candidates_found = found
   local best, bestdt, bestC, bestQ
   for i, k in ipairs(cand) do
     local C, Q
@@ -169,7 +200,15 @@ function M.run(P, opts)
   if type(opts) == "table" and opts.closed == false then
     error("bad argument #2 to 'run' (carvalho fits closed sections only: use bsfit.strategy.periodic with closed = false)", 2)
   end
-  return common.run(M, P, opts)
+  local notes, map
+  P, opts, notes = common.drop_closing_point(P, opts)
+  local Q
+  Q, opts, map = common.merge_repeats(P, opts, notes)
+  local C, rep = common.run(M, Q, opts, notes)
+  if map then common.unmerge_report(rep, map, #P) end
+  rep.candidates_tried = #(rep.candidates or {})
+  rep.candidates_found = rep.candidates_found or rep.candidates_tried
+  return C, rep
 end
 
 return M

@@ -361,6 +361,121 @@ end
 -- }======================================================================
 
 -- {======================================================================
+-- What scanners write: a repeated closing point, repeated consecutive points
+-- =======================================================================
+
+local function same_point(P, i, j)
+  local a, b = { P:get(i) }, { P:get(j) }
+  for k = 1, #a do
+    if a[k] ~= b[k] then return false end
+  end
+  return true
+end
+
+-- Whether every point of P is the first.
+function M.all_same(P)
+  for i = 2, #P do
+    if not same_point(P, 1, i) then return false end
+  end
+  return true
+end
+
+-- The first n values of point weights pw (Vector or table) as a table.
+local function head_of(pw, n)
+  local t = type(pw) == "table" and pw or pw:totable()
+  local r = {}
+  for i = 1, math.min(n, #t) do r[i] = t[i] end
+  return r
+end
+
+-- Called by every strategy's run before anything else: a closed section whose last
+-- point repeats the first (scanners close their loops that way) loses that point,
+-- and the point_weights their last value. Returns P (a Points), the options (a copy
+-- when changed) and the notes common.run adds to the report: warnings (strings) and
+-- dropped_closing_point. Open fits (closed = false) keep every point.
+function M.drop_closing_point(P, opts)
+  if type(P) == "table" then P = bs.points.new(P) end
+  local notes = { warnings = {} }
+  local closed = not (type(opts) == "table" and opts.closed == false)
+  local ok, m = pcall(function() return #P end)
+  if not closed or not ok or math.type(m) ~= "integer" or m < 3 or not same_point(P, 1, m)
+     or same_point(P, 1, 2) and same_point(P, 1, m // 2) and M.all_same(P) then
+    return P, opts, notes -- all points coinciding is another failure, said as such later
+  end
+  local o = {}
+  for k, v in pairs(opts or {}) do o[k] = v end
+  local pw = o.point_weights
+  if pw ~= nil and (type(pw) == "table" or getmetatable(pw)) then
+    o.point_weights = head_of(pw, m - 1)
+  end
+  notes.dropped_closing_point = true
+  notes.warnings[1] = ("point %d repeats point 1 (a closed section's closing point): dropped")
+    :format(m)
+  return P:slice(1, m - 1), o, notes
+end
+
+-- Merges runs of repeated consecutive points (after M.drop_closing_point) into one
+-- point whose weight is the run's (the sum of its point_weights, or its length): the
+-- same weighted least-squares problem without coincident points, which the paper's
+-- rules (circumradius, averaging knots) cannot take. Returns P, opts and map (map[j] = index in the input of merged point j), or
+-- P, opts, nil when nothing repeats. Adds a warning to notes.
+function M.merge_repeats(P, opts, notes)
+  local okm, m = pcall(function() return #P end)
+  if not okm or math.type(m) ~= "integer" then return P, opts, nil end -- misuse: run says
+  local keep, map, runs = {}, {}, 0
+  for i = 1, m do
+    if i > 1 and same_point(P, i, map[#map]) then
+      runs = runs + 1
+    else
+      map[#map + 1] = i
+    end
+    keep[i] = #map
+  end
+  if runs == 0 or #map == 1 then return P, opts, nil end -- all coinciding: said later
+  local pw = opts and opts.point_weights
+  pw = pw and (type(pw) == "table" and pw or pw:totable())
+  local w, parts, s, size = {}, {}, P:bytes(), 8 * P:dim()
+  for i = 1, m do
+    w[keep[i]] = (w[keep[i]] or 0) + (pw and pw[i] or 1)
+  end
+  for j, i in ipairs(map) do parts[j] = s:sub((i - 1) * size + 1, i * size) end
+  local o = {}
+  for k, v in pairs(opts or {}) do o[k] = v end
+  o.point_weights = w
+  notes.warnings[#notes.warnings + 1] =
+    ("%d repeated consecutive points merged into their first (weights added)"):format(runs)
+  return bs.points.frombytes(table.concat(parts), P:dim()), o, map
+end
+
+-- The report of a fit to merged points (M.merge_repeats) in the input's terms:
+-- indices mapped back, residuals and weights repeated for the merged points (a
+-- repeated point is where its first is: the same distance).
+function M.unmerge_report(rep, map, m)
+  local back = {}
+  for j, i in ipairs(map) do back[i] = j end
+  local function expand(v)
+    if v == nil then return nil end
+    local t, r, j = type(v) == "table" and v or v:totable(), {}, 0
+    for i = 1, m do
+      if back[i] then j = back[i] end
+      r[i] = t[j]
+    end
+    return type(v) == "table" and r or bs.vector.new(r)
+  end
+  rep.residuals, rep.weights = expand(rep.residuals), expand(rep.weights)
+  for _, k in ipairs { "start_index", "max_index", "max_trusted_index" } do
+    if rep[k] then rep[k] = map[rep[k]] end
+  end
+  if rep.candidates then
+    for i, k in ipairs(rep.candidates) do rep.candidates[i] = map[k] end
+  end
+  rep.points = m
+  return rep
+end
+
+-- }======================================================================
+
+-- {======================================================================
 -- The runner
 -- =======================================================================
 
@@ -438,23 +553,103 @@ end
 -- Runs every step of `strategy` in order on P. The curve is the last curve a step
 -- returned (ctx.curve). Returns the curve and the report. Raises on misuse and on
 -- a failed step (message "<strategy>: ...").
-function M.run(strategy, P, opts)
+-- {======================================================================
+-- Explicit requests the data cannot honour: an error or a warning, never silence
+-- =======================================================================
+
+-- Number of distinct points of P (consecutive repeats and a closing repeat aside,
+-- points that coincide share a parameter and cannot carry a control point each).
+local function distinct_points(P)
+  local seen, n = {}, 0
+  for i = 1, #P do
+    local key = string.pack(("d"):rep(P:dim()), P:get(i))
+    if not seen[key] then seen[key], n = true, n + 1 end
+  end
+  return n
+end
+
+-- An explicit count (opts.count, a plain integer) must be one a fit can have: at least
+-- degree + 1, at most the number of distinct points. Raises naming the limit.
+function M.check_count(strategy, P, opts, settings)
+  local n = opts.count
+  if n == nil or type(n) == "function" or (getmetatable(n) or {}).__call then return end
+  local p = settings.degree
+  if math.type(n) ~= "integer" then
+    error(("%s: count must be an integer, got %s"):format(strategy.name, tostring(n)), 0)
+  end
+  if n < p + 1 then
+    error(("%s: count %d is below the minimum for degree %d (at least %d)")
+          :format(strategy.name, n, p, p + 1), 0)
+  end
+  if n > #P then
+    error(("%s: count %d is more than the %d points allow (at most %d)")
+          :format(strategy.name, n, #P, #P), 0)
+  end
+  -- counting distinct points costs a Lua pass over P: only where it can matter (a count
+  -- near the point count) and affordable; check_count_honoured catches the rest
+  local d = (n > #P // 2 and #P <= 200000) and distinct_points(P) or n
+  if n > d then
+    error(("%s: count %d is more than the %d distinct points allow (at most %d)")
+          :format(strategy.name, n, d, d), 0)
+  end
+end
+
+-- After the steps: a strategy that fitted fewer control points than an explicit
+-- count asked for (its knot placement keeps data in every span) must say so.
+function M.check_count_honoured(strategy, opts, C)
+  local n = opts.count
+  if math.type(n) ~= "integer" or not M.is_curve(C) then return end
+  local got = C:distinct()
+  if got ~= n then
+    error(("%s: count %d cannot be honoured on these points: at most %d control points here")
+          :format(strategy.name, n, got), 0)
+  end
+end
+
+-- tol (a setting of auto and periodic) not met: the best fit, with a warning. The
+-- distance judged is the one the strategy reports (max_trusted when the file
+-- down-weights points).
+function M.check_tol(settings, rep)
+  local tol = settings.tol
+  if type(tol) ~= "number" then return end
+  local got = rep.max_trusted or rep.max
+  if type(got) == "number" and got > tol then
+    rep.warnings[#rep.warnings + 1] = ("tol %g not met: max deviation %.3g with %s control points")
+      :format(tol, got, tostring(rep.count))
+    rep.tol_met = false
+  else
+    rep.tol_met = true
+  end
+end
+
+-- }======================================================================
+
+-- notes (optional): what M.drop_closing_point found, added to the report (warnings,
+-- dropped_closing_point).
+function M.run(strategy, P, opts, notes)
   P = check_points(P)
   opts = check_options(strategy, opts)
   local settings = settings_of(strategy, opts)
   local need = math.max(3, settings.degree + 1)
   if #P < need then
-    error(("%s: %d points are too few for a curve of degree %d (at least %d needed)")
-          :format(strategy.name, #P, settings.degree, need), 0)
+    error(("%s: %d point%s too few for a curve of degree %d (at least %d needed%s)")
+          :format(strategy.name, #P, #P == 1 and " is" or "s are", settings.degree, need,
+                  notes and notes.dropped_closing_point and "; the repeated closing point dropped"
+                  or ""), 0)
   end
+  if M.all_same(P) then
+    error(("%s: all %d points coincide"):format(strategy.name, #P), 0)
+  end
+  M.check_count(strategy, P, opts, settings)
   local ctx = { strategy = strategy, opts = opts, settings = settings,
-                P = P, times = {}, cache = {} }
+                P = P, times = {}, cache = {}, warnings = {} }
   local t0 = clock()
   for _, name in ipairs(strategy.order) do
     local v = M.call(ctx, name, ctx.P)
     ctx[name] = v
     if M.is_curve(v) then ctx.curve = v end
   end
+  M.check_count_honoured(strategy, opts, ctx.curve)
   if opts.smooth ~= nil then
     local t1 = clock()
     ctx.smoothing = M.smooth_curve(ctx, opts.smooth)
@@ -462,7 +657,14 @@ function M.run(strategy, P, opts)
     if strategy.steps.measure then ctx.measure = M.call(ctx, "measure", ctx.P) end
   end
   ctx.total_ms = (clock() - t0) * 1000
-  return ctx.curve, (strategy.report or M.report)(ctx)
+  local rep = (strategy.report or M.report)(ctx)
+  local warnings = {}
+  for _, w in ipairs(notes and notes.warnings or {}) do warnings[#warnings + 1] = w end
+  for _, w in ipairs(ctx.warnings or {}) do warnings[#warnings + 1] = w end
+  rep.warnings = warnings
+  rep.dropped_closing_point = notes and notes.dropped_closing_point or nil
+  M.check_tol(settings, rep)
+  return ctx.curve, rep
 end
 
 -- The tolerance form of the smoothing step (M.smooth_curve): checks spec, smooths C by

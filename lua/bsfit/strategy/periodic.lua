@@ -262,7 +262,7 @@ end
 steps.measure = common.measure
 
 function M.run(P, opts)
-  local C, rep = common.run(M, P, opts)
+  local C, rep = common.run(M, common.drop_closing_point(P, opts))
   return C, rep
 end
 

@@ -129,7 +129,11 @@ local function piece_curve(P, p, o)
       while sweep >= 0 do sweep = sweep - 2 * math.pi end
     end
     if l2 == 0 then sweep = p.sweep end -- a whole circle
-    return bs.curve.arc { centre = c, radius = r, start = a0, sweep = sweep }, r * math.abs(sweep)
+    -- a degenerate model (repeated samples can give a whole-circle arc whose centre is its
+    -- end): the samples are fitted as a free run instead of raising inside bs.curve.arc
+    if r > 0 and r < math.huge and math.abs(sweep) <= 2 * math.pi then
+      return bs.curve.arc { centre = c, radius = r, start = a0, sweep = sweep }, r * math.abs(sweep)
+    end
   end
   local C = free_run(P, p, o)
   return C, math.max(C:length(), 1e-300)
@@ -148,6 +152,12 @@ end
 -- A closed curve joined from pieces (clamped, its ends equal) in the periodic form
 -- (the seam a knot of multiplicity 3), as the other strategies return closed curves.
 local function periodic_of(C)
+  -- a single piece (a whole circle: 4 control points) leaves 3 distinct ones, too few for
+  -- a closed cubic: one more knot (exact) gives the period room
+  if #C:control_points() < 5 then
+    local a, b = C:domain()
+    C = C:insert((a + b) / 2, 1)
+  end
   local ctrl, kv, w = C:control_points():totable(), C:knots():totable(), C:weights()
   if w then w = w:totable() end
   local n = #ctrl

@@ -1,0 +1,1 @@
+return bs.curve.from_json('{"type":"bspline","degree":1,"knots":[0,0,1,1],"control_points":[[0,0],[1,1]]}'):eval(0.5)

@@ -1,0 +1,1 @@
+local ok, e = pcall(function() local s = string.rep('x', 1e6) return #s end) return ok, e

@@ -1,0 +1,1 @@
+local S = bs.surface.new{degree_u=1,degree_v=1,knots_u={0,0,1,1},knots_v={0,0,1,1},control_points={{{0,0,0},{0,1,0}},{{1,0,0},{1,1,1}}}} return S:eval(0.5,0.5)

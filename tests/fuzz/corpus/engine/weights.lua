@@ -1,0 +1,1 @@
+local w = bs.weights.circumradius(bs.points.new{{0,0},{2,0},{2,1},{1,3},{0,1}}) return w:sum(), bs.geom.angles(bs.points.new{{0,0},{2,0},{2,1},{0,1}})
