@@ -179,7 +179,7 @@ BSFIT_API bsfit_err bsfit_knots_uniform(int p, size_t n, double a, double b, dou
 BSFIT_API bsfit_err bsfit_knots_clamped(int p, size_t n, double a, double b, double *U,
                                         bsfit_status *st);
 
-/** Expanded periodic knot vector (SPEC 1.3) for N distinct control points.
+/** Expanded periodic knot vector (docs/method.md §1) for N distinct control points.
 ** @param[in]  period  N+1 non-decreasing knots t[0] < ... < t[N] of one period
 **                     (strictly increasing ends: t[0] < t[N]).
 ** @param[out] U       N+2p+1 knots: U[p+i] = t[i] for i = 0..N, the spans before and
@@ -221,7 +221,7 @@ BSFIT_API void bsfit_bernstein(int n, double u, double *B);
 **   weight per control point.
 ** - `bezier` curves have n = degree+1 control points and knots [0]*(p+1), [1]*(p+1)
 **   (or another [a,b]); they are evaluated by de Casteljau.
-** - `periodic` curves are stored expanded (SPEC 1.3): n = N+p control points whose
+** - `periodic` curves are stored expanded (docs/method.md §1): n = N+p control points whose
 **   last p repeat the first p, and n+p+1 knots whose spans repeat with the period.
 **   bsfit_curve_distinct(c) == N. Operations keep that form.
 */

@@ -64,7 +64,7 @@ BSFIT_API bsfit_err bsfit_curve_eval_many(const bsfit_curve *c, const double *u,
 ** Multiplicity after insertion may not exceed p, or p+1 at the domain ends a, b of an
 ** open curve. Periodic curves stay periodic: u is wrapped into the period [a, b) and the
 ** knot is inserted at every periodic image, so the result has N+times distinct control
-** points and keeps the expanded form of SPEC 1.3.
+** points and keeps the expanded form of docs/method.md §1.
 **
 ** @param[in]  c      the curve.
 ** @param[in]  u      the knot; open curves need a <= u <= b.

@@ -1,6 +1,6 @@
 /*
 ** bsfit_filter.h
-** Smoothing by box filtering of splines (Persiano, SPEC section 3), and the shape
+** Smoothing by box filtering of splines (Persiano, docs/filtering.md), and the shape
 ** measures that show what a smoothing did (total turning, bending energy, deviation).
 ** Included by bsfit.h; include bsfit.h rather than this file.
 **
@@ -56,7 +56,7 @@ BSFIT_API int bsfit_curve_is_uniform(const bsfit_curve *c);
 ** Open result: degree p+1, n + 2p + k - 1 control points (degree 0: n + k + 1), the
 ** original uniform knots shifted by -delta, domain [U_1 - delta, U_{n+p-1} + delta]
 ** (see the file comment). Closed result: degree p+1, N distinct control points,
-** periodic (SPEC 1.3 expanded form).
+** periodic (docs/method.md §1 expanded form).
 ** @param[in]  c    a valid polynomial curve whose knot spans are all equal.
 ** @param[in]  k    window width in knot spans, 1 <= k <= number of domain spans
 **                  (n - p for an open curve, N for a closed one).

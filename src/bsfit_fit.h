@@ -1,7 +1,7 @@
 /*
 ** bsfit_fit.h
 ** Parameters, knot placement and weighted least-squares fitting (open and periodic),
-** global interpolation, and the paper's "wrap closing" of an open fit (SPEC 2.1-2.4, 2.8).
+** global interpolation, and the paper's "wrap closing" of an open fit (docs/method.md §2-6, §13).
 ** Included by bsfit.h; include bsfit.h rather than this file.
 **
 ** Array layouts used below:
@@ -18,7 +18,7 @@
 #include "bsfit.h"
 
 /* {====================================================================
-** Parameters (SPEC 2.1)
+** Parameters (docs/method.md §2)
 ** ===================================================================== */
 
 /** How parameter values are assigned to points. */
@@ -58,7 +58,7 @@ BSFIT_API bsfit_err bsfit_params(const double *pts, size_t m, int dim, bsfit_par
 /* }==================================================================== */
 
 /* {====================================================================
-** Knot placement (SPEC 2.2)
+** Knot placement (docs/method.md §3-4)
 ** ===================================================================== */
 
 /** Knot placement rules. "Open" rules give a clamped knot vector, "closed" rules one
@@ -66,7 +66,7 @@ BSFIT_API bsfit_err bsfit_params(const double *pts, size_t m, int dim, bsfit_par
 typedef enum bsfit_knot_rule {
   /** open: NURBS Book eq. 9.68-9.69 (P-10, P-11), clamped on [ū_0, ū_{m-1}] */
   BSFIT_KNOTS_AVERAGING = 0,
-  /** closed: the paper's P-12/P-13 as read in SPEC 2.2 ("carvalho-closed"), literal:
+  /** closed: the paper's P-12/P-13 as read in docs/method.md §3-4 ("carvalho-closed"), literal:
   ** t_0 = ū_0, t_k = (1-α) ū_{i-1} + α ū_i with i = int(k d), α = k d - i, d = m/N,
   ** t_N = ū_0 + 1. Its first span is short and its last long (kept to reproduce the paper). */
   BSFIT_KNOTS_CARVALHO_CLOSED = 1,
@@ -118,7 +118,7 @@ BSFIT_API bsfit_err bsfit_knots_place(bsfit_knot_rule rule, const double *u, siz
 /** Lists the knot spans of positive length that hold no parameter.
 **
 ** @param[in]  U        a valid knot vector of nknots = n+p+1 knots (open, or the expanded
-**                      periodic form of SPEC 1.3). Only spans inside the domain
+**                      periodic form of docs/method.md §1). Only spans inside the domain
 **                      [U[p], U[n]] are considered; span s is [U[s], U[s+1]), the last
 **                      one closed on the right for open vectors.
 ** @param[in]  periodic non-zero: parameters are taken modulo the period U[n] - U[p].
@@ -137,7 +137,7 @@ BSFIT_API bsfit_err bsfit_knots_empty_spans(const double *U, size_t nknots, int 
 /* }==================================================================== */
 
 /* {====================================================================
-** The fitter: weighted least squares, open or periodic (SPEC 2.3, 2.8)
+** The fitter: weighted least squares, open or periodic (docs/method.md §5, §13)
 ** ===================================================================== */
 
 /** How a fitter solves its least-squares problem. */
@@ -321,7 +321,7 @@ BSFIT_API bsfit_err bsfit_interpolate(const double *pts, size_t m, int dim, cons
                                       int p, int periodic, bsfit_curve *out,
                                       const bsfit_allocator *a, bsfit_status *st);
 
-/** The paper's wrap closing (SPEC 2.4): reads the n control points of an open fit as the
+/** The paper's wrap closing (docs/method.md §6): reads the n control points of an open fit as the
 ** polygon of a periodic curve of the same degree, with BSFIT_KNOTS_CARVALHO_CLOSED knots
 ** placed on the closed parameters u (an empty span there is not an error here).
 ** @param[in]  open  a polynomial (non-rational), non-periodic curve with n >= p+1 and n >= 2.

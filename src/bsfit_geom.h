@@ -1,6 +1,6 @@
 /*
 ** bsfit_geom.h
-** Geometry kernels on point sequences used by the fitting strategies (SPEC 2.5-2.7):
+** Geometry kernels on point sequences used by the fitting strategies (docs/method.md §7-10):
 ** circumradius weights, turning angles, curvature inversions, local spacing, and
 ** the line projection of the tangent correction.
 ** Included by bsfit.h; include bsfit.h rather than this file.
@@ -19,7 +19,7 @@
 **   BSFIT_ETOOFEW (m < 3), BSFIT_ENONFINITE (a NaN or infinite coordinate); the
 **   message names the argument or the first bad point.
 ** - A triple (A, B, C) is collinear when twice its area is at most 1e-12 times the
-**   square of its longest side; coincident points count as collinear (SPEC 2.5).
+**   square of its longest side; coincident points count as collinear (docs/method.md §7).
 */
 #ifndef BSFIT_GEOM_H
 #define BSFIT_GEOM_H
@@ -30,7 +30,7 @@
 ** longest side). */
 #define BSFIT_GEOM_COLLINEAR_EPS 1e-12
 
-/** Radius of the circle through three consecutive points, per point (SPEC 2.5; the
+/** Radius of the circle through three consecutive points, per point (docs/method.md §7; the
 ** circle lies in the plane of the three points in 3D).
 ** @param[in]  pts       m points (see the conventions above).
 ** @param[in]  closed    non-zero for a cyclic sequence.
@@ -44,7 +44,7 @@
 BSFIT_API bsfit_err bsfit_geom_circumradius(const double *pts, size_t m, int dim, int closed,
                                             int centered, double *r, bsfit_status *st);
 
-/** Per-point weights from the circumradius (SPEC 2.5, P-14, P-15): with the radii of
+/** Per-point weights from the circumradius (docs/method.md §7, P-14, P-15): with the radii of
 ** bsfit_geom_circumradius, r_max = mean + population standard deviation of the finite
 ** radii; w_k = r_max / r_k when r_k <= r_max; points with r_k > r_max or r_k = +Inf
 ** (straight runs) get w_max = max of those w_k = r_max / min_k r_k. So tight corners
@@ -57,7 +57,7 @@ BSFIT_API bsfit_err bsfit_geom_circumradius(const double *pts, size_t m, int dim
 BSFIT_API bsfit_err bsfit_weights_circumradius(const double *pts, size_t m, int dim, int closed,
                                                int centered, double *w, bsfit_status *st);
 
-/** Interior angle at each point, in degrees (SPEC 2.6): the angle of the triangle
+/** Interior angle at each point, in degrees (docs/method.md §8): the angle of the triangle
 ** (Q_k, Q_{k+1}, Q_{k+2}) at Q_{k+1}, stored as ang[k+1] (the angle belongs to the
 ** middle point). 180 means collinear (a straight run), small values sharp spikes.
 ** A point that coincides with one of its neighbours gets 180 (no direction change
@@ -68,7 +68,7 @@ BSFIT_API bsfit_err bsfit_weights_circumradius(const double *pts, size_t m, int 
 BSFIT_API bsfit_err bsfit_geom_angles(const double *pts, size_t m, int dim, int closed,
                                       double *ang, bsfit_status *st);
 
-/** Number of curvature inversions of the polygon (SPEC 2.7): the sign changes of the
+/** Number of curvature inversions of the polygon (docs/method.md §9-10): the sign changes of the
 ** turn direction along the sequence. The turn at Q_k is the cross product of the
 ** edges Q_k - Q_{k-1} and Q_{k+1} - Q_k: its sign in 2D; in 3D two turns have the
 ** same direction when their cross products have a positive dot product. Collinear
@@ -105,7 +105,7 @@ BSFIT_API bsfit_err bsfit_weights_spacing(const double *pts, size_t m, int dim, 
 #define BSFIT_GEOM_SPACING_FLOOR 1e-3
 
 /** Orthogonal projection of P onto the line origin + t dir (the tangent correction,
-** SPEC 2.7: control points P_1, P_2 moved onto the tangent line through Q_0).
+** docs/method.md §9-10: control points P_1, P_2 moved onto the tangent line through Q_0).
 ** @param[in]  P, origin, dir  dim doubles each; dir need not be normalised.
 ** @param[in]  dim             2 or 3.
 ** @param[out] out             dim doubles; may be the same array as P.
@@ -115,7 +115,7 @@ BSFIT_API bsfit_err bsfit_geom_tangent_project(const double *P, const double *or
                                                const double *dir, int dim, double *out,
                                                bsfit_status *st);
 
-/** Distance of P from the line origin + t dir (SPEC 2.6: dt_1, dt_2 of the start-point
+/** Distance of P from the line origin + t dir (docs/method.md §8: dt_1, dt_2 of the start-point
 ** search).
 ** @param[out] d  the distance, >= 0.
 ** @return as bsfit_geom_tangent_project. */

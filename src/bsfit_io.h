@@ -1,6 +1,6 @@
 /*
 ** bsfit_io.h
-** Files (SPEC section 4): point files (CSV / whitespace text), curve and surface JSON,
+** Files (docs/formats.md): point files (CSV / whitespace text), curve and surface JSON,
 ** SVG pictures, IGES 5.3 export (entities 126 and 128), and atomic file writing.
 ** Included by bsfit.h; include bsfit.h rather than this file.
 **
@@ -91,7 +91,7 @@ BSFIT_API bsfit_err bsfit_points_write(const char *path, const double *xy, size_
 /* }==================================================================== */
 
 /* {====================================================================
-** JSON (SPEC section 4)
+** JSON (docs/formats.md)
 ** Curve: {"type":"bspline"|"nurbs"|"bezier","degree":p,"dim":d,"periodic":false,
 **   "knots":[...n+p+1...],"control_points":[[x,y],...n...],"weights":[...n...]
 **   (rational only),"domain":[a,b]}; periodic curves in expanded form (wrapped points

@@ -1,6 +1,6 @@
 /*
 ** filter.c
-** Smoothing by box filtering (Persiano, SPEC section 3): the paper's moving average of
+** Smoothing by box filtering (Persiano, docs/filtering.md): the paper's moving average of
 ** the control points for uniform curves (open with the end rule, or closed), and the
 ** public curve / surface entry points, which check their input and dispatch to the
 ** moving average or to the exact filter of filter_exact.c.
@@ -159,7 +159,7 @@ bsfit_err bsfit__filter_ma_periodic(const bsfit__fview *in, int k, const bsfit_a
     bsfit__fspline_free(a, out);
     return bsfit__fail(st, BSFIT_EINTR, "filter interrupted");
   }
-  /* the wrapped points must repeat the first ones bit for bit (SPEC 1.3) */
+  /* the wrapped points must repeat the first ones bit for bit (docs/method.md §1) */
   memcpy(out->P + N * d, out->P, q * d * sizeof(double));
   bsfit__free(a, sum, d * sizeof(double));
   return bsfit__ok(st);

@@ -1,7 +1,7 @@
 /*
 ** fit.c
 ** The fitter: settings, a workspace reused across fits, the span-by-span assembly of the
-** banded normal equations N^T W N P = N^T W Q (SPEC 2.3), the open solve with exact end
+** banded normal equations N^T W N P = N^T W Q (docs/method.md §5), the open solve with exact end
 ** constraints, the diagnostics pass, global interpolation and the paper's wrap closing.
 ** The periodic solve lives in periodic.c, every LAPACK call in linalg.c.
 */

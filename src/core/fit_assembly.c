@@ -1,6 +1,6 @@
 /*
 ** fit_assembly.c
-** The fitter's two passes over the points, span by span (SPEC 2.3): the banded normal
+** The fitter's two passes over the points, span by span (docs/method.md §5): the banded normal
 ** equations N^T W N P = N^T W Q, and the residuals |Q_k - C(u_k)| of the solved curve.
 **
 ** Degrees 1..3 (nearly every fit) work with power moments. On span s the p+1 non-zero

@@ -1,7 +1,7 @@
 /*
 ** geom.c
 ** Geometry kernels on ordered point sequences for the fitting strategies
-** (SPEC 2.5-2.7): circumradius per point and the paper's weights from it, interior
+** (docs/method.md §7-10): circumradius per point and the paper's weights from it, interior
 ** angles, curvature inversions, turning and spacing weights, and the projection of
 ** a point onto a line used by the tangent correction. Every kernel is one O(m) pass
 ** over the points and allocates nothing.
@@ -93,7 +93,7 @@ static double max3(double a, double b, double c) {
   return m > c ? m : c;
 }
 
-/* SPEC 2.5's collinearity test, given twice the area and the three squared sides.
+/* docs/method.md §7's collinearity test, given twice the area and the three squared sides.
 ** A zero longest side (three coincident points) gives 0 <= 0: collinear. */
 static int is_collinear(double area2, double s0, double s1, double s2) {
   return area2 <= BSFIT_GEOM_COLLINEAR_EPS * max3(s0, s1, s2);

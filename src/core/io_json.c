@@ -1,6 +1,6 @@
 /*
 ** io_json.c
-** Curves and surfaces as JSON (SPEC section 4): the writers, and the readers that
+** Curves and surfaces as JSON (docs/formats.md): the writers, and the readers that
 ** walk the documented keys with the strict reader of io_jsonparse.c and then build
 ** the object through bsfit_curve_new / bsfit_surface_new (full validation).
 */

@@ -1,6 +1,6 @@
 /*
 ** io_points.c
-** Point files (SPEC section 4): CSV / semicolon / whitespace text with '#' comments
+** Point files (docs/formats.md): CSV / semicolon / whitespace text with '#' comments
 ** and an optional header naming the columns x, y, z, w; and the CSV writer.
 */
 #include "io_internal.h"

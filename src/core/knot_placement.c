@@ -1,7 +1,7 @@
 /*
 ** knot_placement.c
 ** Knot vectors placed on the data's parameters: averaging for open fits (NURBS Book
-** 9.68-9.69 = P-10/P-11), the paper's closed rule (P-12/P-13 as read in SPEC 2.2), a
+** 9.68-9.69 = P-10/P-11), the paper's closed rule (P-12/P-13 as read in docs/method.md §3-4), a
 ** consistent periodic averaging, uniform; and the Schoenberg-Whitney check (which knot
 ** spans hold no parameter).
 */
@@ -140,7 +140,7 @@ static void place_uniform(const double *u, size_t m, int p, size_t n, double *U)
   (void)bsfit_knots_clamped(p, n, u[0], u[m - 1], U, NULL);
 }
 
-/* SPEC 2.2, literal: t_k at fractional index k d - 1 for k = 1..N-1, ends at 0 and m */
+/* docs/method.md §3-4, literal: t_k at fractional index k d - 1 for k = 1..N-1, ends at 0 and m */
 static void place_carvalho(const double *u, size_t m, size_t N, double *T) {
   size_t k;
   double d = (double)m / (double)N;

@@ -1,7 +1,7 @@
 /*
 ** param.c
 ** Parameter values for ordered points: uniform, chord length (P-8, P-9) and centripetal,
-** for open data and for closed sections (closing chord counted, SPEC 2.1).
+** for open data and for closed sections (closing chord counted, docs/method.md §2).
 */
 #include "internal.h"
 

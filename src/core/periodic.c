@@ -1,6 +1,6 @@
 /*
 ** periodic.c
-** Periodic weighted least squares (SPEC 2.8): the N distinct control points of a closed
+** Periodic weighted least squares (docs/method.md §13): the N distinct control points of a closed
 ** curve. The assembly (fit.c) works on the N+p stored control points of the expanded form
 ** exactly as an open fit does; here the wrapped unknowns are folded onto their originals
 ** (P_{N+i} = P_i), which gives a banded matrix plus p x p wrap-around corners, and the

@@ -435,7 +435,7 @@ static int curve_max_deviation(lua_State *L) {
   return 1;
 }
 
-/* C:to_json() --> the JSON text of SPEC 4 */
+/* C:to_json() --> the JSON text of docs/formats.md */
 static int curve_to_json(lua_State *L) {
   bsfit_curve *c = checkcurve(L, 1);
   bsfit_scratch_ud *box = bsfit__lua_newscratch(L);
@@ -508,7 +508,7 @@ static bsfit_err write_exchange(lua_State *L, const bsfit_curve *c, const char *
   return dxf ? bsfit_curves_write_dxf(one, 1, path, st) : bsfit_curves_write_step(one, 1, path, st);
 }
 
-/* C:write(path [, {samples = 1000}]), by extension: ".json" (SPEC 4), ".svg" (the
+/* C:write(path [, {samples = 1000}]), by extension: ".json" (docs/formats.md), ".svg" (the
 ** curve over its control polygon), ".iges"/".igs" (entity 126), ".step"/".stp" (ISO
 ** 10303-21) and ".dxf" (SPLINE; both in docs/exchange.md), ".csv" (`samples`
 ** points of the curve, as C:sample). The file is replaced atomically. Returns C, or
@@ -622,7 +622,7 @@ static int curve_control_point(lua_State *L) {
 }
 
 /* C:set_control_point(i, x, y[, z]): for a periodic curve, the point and its wrapped
-** copy move together (SPEC 1.3), whichever of the two i names. */
+** copy move together (docs/method.md §1), whichever of the two i names. */
 static int curve_set_control_point(lua_State *L) {
   bsfit_curve *c = checkcurve(L, 1);
   size_t i = bsfit__lua_index(L, 2, c->n), d = (size_t)c->dim, k, N = bsfit_curve_distinct(c);

@@ -1,6 +1,6 @@
 /*
 ** lfilter.c
-** bs.filter.box: smoothing by a box filter (SPEC 3, Persiano; src/bsfit_filter.h).
+** bs.filter.box: smoothing by a box filter (docs/filtering.md, Persiano; src/bsfit_filter.h).
 **   bs.filter.box(C, k)                     moving average over k knot spans (uniform C)
 **   bs.filter.box(C, {delta = d})           exact filter of half-width d, any polynomial C
 **   bs.filter.box(S, k, l)                  k x l knot spans of a uniform surface

@@ -1,7 +1,7 @@
 /*
 ** lfitter.c
 ** bsfit.Fitter: weighted least-squares fitting settings plus the core's reusable
-** workspace (SPEC 2.3, 2.8). The workspace comes from Lua's allocator and is
+** workspace (docs/method.md §5, §13). The workspace comes from Lua's allocator and is
 ** released by an idempotent __gc shared with __close; a closed fitter raises.
 */
 #include "laux.h"

@@ -1,7 +1,7 @@
 /*
 ** lgeom.c
 ** bs.params and bs.geom: the kernels on point sequences that are not methods of one
-** type (SPEC 2.1, 2.5-2.7 and issue 7, src/bsfit_geom.h, src/bsfit_analysis.h):
+** type (docs/method.md §2, §7-10 and issue 7, src/bsfit_geom.h, src/bsfit_analysis.h):
 **   bs.params(P [, "uniform"|"chord"|"centripetal" [, {closed = false}]]) --> Vector
 **   bs.geom.circumradius(P [, {closed = true, centered = true}]) --> Vector (inf: straight)
 **   bs.geom.angles(P [, {closed = true}])                        --> Vector (degrees)
@@ -84,7 +84,7 @@ static int geom_angles(lua_State *L) {
   return bsfit__lua_result(L, e, &st, 1, 1);
 }
 
-/* number of turn-direction sign changes (SPEC 2.7) */
+/* number of turn-direction sign changes (docs/method.md §9-10) */
 static int geom_inflections(lua_State *L) {
   int t, closed;
   bsfit_points_ud *P = kernel_args(L, opts_closed, &t, &closed);

@@ -127,7 +127,7 @@ static int knots_uniform(lua_State *L) { return knots_kind(L, bsfit_knots_unifor
 static int knots_clamped(lua_State *L) { return knots_kind(L, bsfit_knots_clamped); }
 
 /* bs.knots.periodic{degree = p, period = {t0..tN}} | {degree = p, count = N, domain = {a,b}}:
-** the expanded vector of SPEC 1.3 (N + 2p + 1 knots) */
+** the expanded vector of docs/method.md §1 (N + 2p + 1 knots) */
 static int knots_periodic(lua_State *L) {
   static const char *const opts[] = {"degree", "count", "domain", "period", NULL};
   bsfit_status st;
@@ -163,7 +163,7 @@ static int knots_periodic(lua_State *L) {
 }
 
 /* bs.knots.averaging{params = u, count = n, degree = 3, closed = false, rule = ...}:
-** knots placed on the parameters (SPEC 2.2). Open rules give a clamped vector; closed
+** knots placed on the parameters (docs/method.md §3-4). Open rules give a clamped vector; closed
 ** rules ("carvalho-closed", "periodic-averaging", "periodic-uniform") the expanded
 ** periodic vector. A span without parameters gives nil, message, "EEMPTYSPAN". */
 static int knots_averaging(lua_State *L) {

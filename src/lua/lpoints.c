@@ -223,7 +223,7 @@ static int points_slice(lua_State *L) {
 }
 
 /* P:rotate(k): a copy cyclically shifted so that point k comes first (the start-point
-** search of SPEC 2.6 tries each candidate as Q_0). */
+** search of docs/method.md §8 tries each candidate as Q_0). */
 static int points_rotate(lua_State *L) {
   bsfit_points_ud *P = checkpoints(L, 1), *Q;
   size_t k = bsfit__lua_index(L, 2, P->n), d = P->dim;

@@ -1,6 +1,6 @@
 /*
 ** lsurface.c
-** bsfit.Surface: tensor-product B-spline, NURBS and Bézier surfaces (SPEC 1.1-1.2,
+** bsfit.Surface: tensor-product B-spline, NURBS and Bézier surfaces (docs/method.md §1,
 ** src/bsfit_surface.h). The userdata holds a bsfit_surface whose arrays come from
 ** Lua's allocator (STYLE R7), freed by an idempotent __gc that __close shares.
 **   bs.surface.new{degree_u =, degree_v =, knots_u =, knots_v =,

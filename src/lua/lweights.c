@@ -1,6 +1,6 @@
 /*
 ** lweights.c
-** bs.weights: the per-point weighting rules of the fitting strategies (SPEC 2.5,
+** bs.weights: the per-point weighting rules of the fitting strategies (docs/method.md §7,
 ** src/bsfit_geom.h), each returning one weight per point as a Vector:
 **   bs.weights.circumradius(P [, {closed = true, centered = true}])
 **   bs.weights.turning(P [, {closed = true}])

@@ -1,6 +1,6 @@
 /*
 ** test_geom.c
-** Geometry kernels of the strategies (SPEC 2.5-2.7) against mathematics: the
+** Geometry kernels of the strategies (docs/method.md §7-10) against mathematics: the
 ** circumradius of regular polygons (R = s / (2 sin(pi/m))) and of points on a circle,
 ** the paper's weights on a regular polygon and a rounded square, interior angles of
 ** regular polygons (180 (m-2)/m), inflections of stars, convex shapes and a sine

@@ -361,7 +361,7 @@ static void test_curve_json_roundtrip(void **state) {
     bsfit_status st;
     assert_int_equal(bsfit_curve_to_json(&c[i], &js, &len, NULL, &st), BSFIT_OK);
     assert_int_equal(strlen(js), len);
-    /* structure: the SPEC's keys, weights only when rational */
+    /* structure: the keys of docs/formats.md, weights only when rational */
     assert_non_null(strstr(js, "\"knots\":["));
     assert_non_null(strstr(js, "\"control_points\":[["));
     assert_non_null(strstr(js, "\"domain\":["));

@@ -1,7 +1,7 @@
 /*
 ** test_knot_placement.c
 ** Knot rules against hand-computed values of their formulas (NURBS Book 9.68-9.69, the
-** paper's P-12/P-13 as read in SPEC 2.2, periodic averaging), the Schoenberg-Whitney
+** paper's P-12/P-13 as read in docs/method.md §3-4, periodic averaging), the Schoenberg-Whitney
 ** guarantee on random data, empty spans (which and how many), invalid inputs.
 */
 #include <setjmp.h>

@@ -214,7 +214,7 @@ T.test("insert and refine keep the curve as a point set and parametrisation", fu
   T.raises({match = "^bad argument #2 to 'insert' %(.*multiplicity"}, function() C:insert(0.5, 3) end)
 end)
 
-T.test("JSON: SPEC 4 keys, and from_json(to_json(C)) is the same curve", function()
+T.test("JSON: docs/formats.md keys, and from_json(to_json(C)) is the same curve", function()
   local C = quarter_circle()
   local s = C:to_json()
   for _, key in ipairs{'"type"%s*:%s*"nurbs"', '"degree"%s*:%s*2', '"dim"%s*:%s*2', '"periodic"%s*:%s*false',

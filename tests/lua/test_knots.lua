@@ -23,7 +23,7 @@ T.test("uniform: U[i] = a + (i-p) h on the requested domain", function()
   T.eq(a, 0); T.eq(b, 3)
 end)
 
-T.test("periodic: spans repeat around one period (SPEC 1.3)", function()
+T.test("periodic: spans repeat around one period (docs/method.md §1)", function()
   local K = bs.knots.periodic{degree = 3, count = 4}
   same(K:values(), {-0.75, -0.5, -0.25, 0, 0.25, 0.5, 0.75, 1, 1.25, 1.5, 1.75}, "uniform periodic")
   local P = bs.knots.periodic{degree = 2, period = {0, 0.1, 0.5, 1}}

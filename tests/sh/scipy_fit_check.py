@@ -2,7 +2,7 @@
 
 For each case: the design matrix of the knots bsfit returned comes from scipy's
 BSpline.design_matrix (periodic fits: the expanded knots, wrapped columns folded onto
-their originals, SPEC 1.3); the weighted least-squares problem min sum w_k |Q_k - C(u_k)|^2
+their originals, docs/method.md §1); the weighted least-squares problem min sum w_k |Q_k - C(u_k)|^2
 is solved densely with numpy's lstsq on sqrt(w)-scaled rows (QR/SVD, not normal equations),
 constrained unknowns (fixed ends, end tangents) moved to the right-hand side. Open fits without
 constraints are also fitted by scipy's make_lsq_spline (it squares its weights: w = sqrt(w_k)).

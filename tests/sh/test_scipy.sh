@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# test_scipy.sh BSFIT SRC: the curve JSON of `bsfit reconstruct` (SPEC 4) is read by an
+# test_scipy.sh BSFIT SRC: the curve JSON of `bsfit reconstruct` (docs/formats.md) is read by an
 # independent evaluator: scipy's BSpline on the JSON's knots, control points and degree
 # must reproduce the CSV samples bsfit wrote, for every demo section and every strategy.
 set -u

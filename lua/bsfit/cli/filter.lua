@@ -1,6 +1,6 @@
 -- lua/bsfit/cli/filter.lua
 -- `bsfit filter IN.json -k K [-o OUT.json]` (or `--delta D` instead of -k): smooths a
--- curve by the box filter (SPEC 3) and writes the filtered curve as JSON, plus an SVG
+-- curve by the box filter (docs/filtering.md) and writes the filtered curve as JSON, plus an SVG
 -- of the curve before (blue) and after (vermilion) next to it, with a legend. Prints the maximum
 -- deviation the filter introduced and the total turning and bending energy before
 -- and after. `--tol T [--order R] [--degree Q]` smooths to a tolerance instead

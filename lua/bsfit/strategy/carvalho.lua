@@ -1,8 +1,8 @@
 -- lua/bsfit/strategy/carvalho.lua
--- The Pereira & Carvalho method (SPEC section 2), faithfully: chord parameters,
+-- The Pereira & Carvalho method (docs/method.md), faithfully: chord parameters,
 -- circumradius weights, the 50% control-point count rule, an open weighted
 -- least-squares fit on averaging knots, the paper's closing by wrapping (P-12,
--- P-13 as SPEC 2.2 reads them), the start-point search over the aligned points
+-- P-13 as docs/method.md §3-4 reads them), the start-point search over the aligned points
 -- (refitting each candidate) and the tangent correction of P_1, P_2.
 --
 --   local carvalho = require "bsfit.strategy.carvalho"
@@ -42,7 +42,7 @@ local steps = {}
 M.steps = steps
 
 -- {======================================================================
--- The open fit and the closing (SPEC 2.1-2.4)
+-- The open fit and the closing (docs/method.md §2-6)
 -- =======================================================================
 
 -- Open chord parameters, ū_0 = 0 .. ū_j = 1 (P-8, P-9).
@@ -75,7 +75,7 @@ function steps.fit(P, ctx)
   return C
 end
 
--- The paper's closing (SPEC 2.4): the open fit's N control points read as a
+-- The paper's closing (docs/method.md §6): the open fit's N control points read as a
 -- periodic polygon with the "carvalho-closed" knots of the closed parameters.
 function steps.close(P, ctx)
   local open, p = ctx.fit, ctx.settings.degree
@@ -89,7 +89,7 @@ end
 -- }======================================================================
 
 -- {======================================================================
--- Start point (SPEC 2.6) and tangent correction (SPEC 2.7)
+-- Start point (docs/method.md §8) and tangent correction (docs/method.md §9-10)
 -- =======================================================================
 
 -- The setting `candidates`: a count >= 1, or "all" (math.huge).

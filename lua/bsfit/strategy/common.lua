@@ -28,7 +28,7 @@ M.clock = clock
 -- Small numeric helpers
 -- =======================================================================
 
--- Mean and population standard deviation of a Lua array (SPEC 2.5, 2.6).
+-- Mean and population standard deviation of a Lua array (docs/method.md §7, §8).
 function M.mean_std(t)
   local n, s, s2 = #t, 0, 0
   if n == 0 then return 0, 0 end
@@ -217,7 +217,7 @@ function M.trusted_max(d, t, k)
   return (d:max())
 end
 
--- Chord-length parameters (SPEC 2.1); closed data includes the closing chord.
+-- Chord-length parameters (docs/method.md §2); closed data includes the closing chord.
 -- closed: true / false, or nil to follow the `closed` setting.
 function M.params_chord(closed)
   return function(P, ctx)
@@ -227,7 +227,7 @@ function M.params_chord(closed)
   end
 end
 
--- Chord parameters (SPEC 2.1) that down-weighted points cannot stretch: with
+-- Chord parameters (docs/method.md §2) that down-weighted points cannot stretch: with
 -- point_weights, computed over the trusted points only and interpolated for the
 -- others (bs.params_trusted, the rule of M.trusted); without, plain bs.params.
 -- closed: true / false, or nil to follow the `closed` setting.
@@ -242,7 +242,7 @@ function M.params_trusted(closed)
   end
 end
 
--- Weights from circumradius (SPEC 2.5, computed in C), times the per-point
+-- Weights from circumradius (docs/method.md §7, computed in C), times the per-point
 -- weights read from the file (ctx.settings.point_weights) when there are any.
 function M.weights_circumradius(P, ctx)
   local w = bs.weights.circumradius(P, { closed = M.closed(ctx) })
@@ -312,7 +312,7 @@ function M.distinct_params(u)
   return n
 end
 
--- Control-point count (SPEC 2.7): the number of curvature inversions of the
+-- Control-point count (docs/method.md §9-10): the number of curvature inversions of the
 -- closed polygon; below 50% of the points, 50% of the points. Kept within what a
 -- fit of degree p to m points can have: p+1 .. the number of distinct parameters
 -- (repeated points would otherwise leave knot spans without data).
@@ -695,7 +695,7 @@ local function smooth_to_tol(C, spec)
               degree = S:degree() }
 end
 
--- The smoothing step every strategy accepts (SPEC 3): opts.smooth = k (or {k = k}) box
+-- The smoothing step every strategy accepts (docs/filtering.md): opts.smooth = k (or {k = k}) box
 -- filters the fitted curve over k knot spans (the moving average of k control points
 -- on uniform knots; the exact filter of the same width, k times the mean span, on any
 -- other knots), {delta = d} over [t - d, t + d]. The curve becomes one degree higher.

@@ -1,5 +1,5 @@
 -- lua/bsfit/strategy/periodic.lua
--- Our improvement on the paper (SPEC 2.8): the same weights and control-point
+-- Our improvement on the paper (docs/method.md §13): the same weights and control-point
 -- count, but a true periodic weighted least-squares fit, so the curve is C^{p-1}
 -- at the seam by construction and needs no start-point search or tangent
 -- correction. With `tol`, the count is instead the smallest one whose maximum
@@ -43,21 +43,21 @@ M.order = { "params", "weights", "count", "knots", "fit", "start", "refine", "me
 local steps = {}
 M.steps = steps
 
--- Chord parameters (SPEC 2.1; closed: in [0, 1), the closing chord counted), over
+-- Chord parameters (docs/method.md §2; closed: in [0, 1), the closing chord counted), over
 -- the trusted points when some are down-weighted.
 steps.params = common.params_trusted(nil)
 
--- Circumradius weights (SPEC 2.5) of the shape the trusted points describe, times
+-- Circumradius weights (docs/method.md §7) of the shape the trusted points describe, times
 -- the point_weights.
 steps.weights = common.weights_circumradius_trusted
 
 steps.count = common.count_inversions
 
--- The averaging knot rules (SPEC 2.2) and whether each closes the curve.
+-- The averaging knot rules (docs/method.md §3-4) and whether each closes the curve.
 local RULES = { ["periodic-averaging"] = true, ["carvalho-closed"] = true,
                 ["periodic-uniform"] = true, averaging = false, uniform = false }
 
--- Averaging knots (SPEC 2.2) by the rule of setting knot_rule: closed curves
+-- Averaging knots (docs/method.md §3-4) by the rule of setting knot_rule: closed curves
 -- default to "periodic-averaging" (the α-interpolation taken consistently around
 -- the circle; "carvalho-closed" is the paper's literal rule), open ones to
 -- "averaging". The step gives the rule's name, and the fitter places those knots on
@@ -152,7 +152,7 @@ local function score(ctx, rep, k)
   return common.trusted_max(rep.residuals, t, k)
 end
 
--- The sharpest point: the smallest angle (SPEC 2.6's angle), over the trusted
+-- The sharpest point: the smallest angle (docs/method.md §8's angle), over the trusted
 -- points' polygon when some are down-weighted (an outlier makes a spike).
 local function sharpest(P, ctx)
   local t = common.trusted(ctx)
@@ -218,7 +218,7 @@ local function fit_count(ctx, n)
   return sub.fit, score(ctx, sub.fit_report, seam.k)
 end
 
--- Tolerance search (SPEC 2.8): the fit's deviation at the parameters bounds the
+-- Tolerance search (docs/method.md §13): the fit's deviation at the parameters bounds the
 -- closest-point deviation from above, so meeting tol with it meets tol (over the
 -- trusted points, with point_weights: rep.max_trusted). Doubles the count until
 -- tol is met (n = m interpolates), then bisects. Without tol, keeps the fit.
