@@ -51,9 +51,14 @@ work="$build/corpus/$target"
 art="$build/artifacts/$target/"
 mkdir -p "$work" "$art"
 status=0
+# FUZZ_SEED and FUZZ_RUNS make a run repeatable (the same inputs on every machine: what CI
+# uses, so a green run stays green); without them libFuzzer explores for SECONDS.
+repeat=()
+[ -n "${FUZZ_SEED:-}" ] && repeat+=(-seed="$FUZZ_SEED")
+[ -n "${FUZZ_RUNS:-}" ] && repeat+=(-runs="$FUZZ_RUNS")
 "$bin" "$work" "$seeds" -max_total_time="$secs" -timeout=20 -rss_limit_mb=2048 \
   -max_len="${FUZZ_MAX_LEN:-8192}" -artifact_prefix="$art" -print_final_stats=1 \
-  >"$build/fuzz_$target.log" 2>&1 || status=1
+  "${repeat[@]}" >"$build/fuzz_$target.log" 2>&1 || status=1
 find "$art" -type f -exec mv -n {} "$regress/" \; # crash-*, leak-*, timeout-*, oom-*, slow-unit-*
 grep -E "^(stat::number_of_executed_units|stat::peak_rss_mb)" "$build/fuzz_$target.log" || true
 if [ $status -ne 0 ]; then
@@ -61,4 +66,4 @@ if [ $status -ne 0 ]; then
   echo "fuzz.sh: $target crashed; input(s) copied to $regress/ (log: $build/fuzz_$target.log)" >&2
   exit 1
 fi
-echo "fuzz.sh: $target: $secs s, nothing found"
+echo "fuzz.sh: $target: ${FUZZ_RUNS:+$FUZZ_RUNS inputs (seed ${FUZZ_SEED:-random}), }at most $secs s, nothing found"

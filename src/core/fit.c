@@ -518,6 +518,10 @@ static bsfit_err fit_body(bsfit_fitter *f, const double *pts, size_t m, int dim,
   if (e != BSFIT_OK) return e;
   memcpy(out->knots, f->U, f->nk * sizeof(double));
   out->periodic = f->periodic;
+  /* OK means a valid curve: knots placed on clustered parameters can repeat beyond what
+  ** the degree allows (a closed degree-1 fit, found by the fuzzer) */
+  e = bsfit_curve_validate(out, st);
+  if (e != BSFIT_OK) return e;
   if (rep) {
     rep->rcond = rcond;
     rep->solver = used;
