@@ -206,24 +206,8 @@ static bsfit__fview curve_view(const bsfit_curve *c) {
 ** the input curve) survives an invalid result. */
 static bsfit_err give_curve(bsfit__fspline *f, int dim, int periodic,
                             const bsfit_allocator *a, bsfit_curve *out, bsfit_status *st) {
-  bsfit_curve res;
-  bsfit_err e;
-  bsfit_curve_init(&res);
-  res.degree = f->p;
-  res.dim = dim;
-  res.n = f->n;
-  res.knots = f->U;
-  res.ctrl = f->P;
-  res.periodic = periodic;
-  res.alloc = *a;
-  memset(f, 0, sizeof *f);
-  e = bsfit_curve_validate(&res, st);
-  if (e != BSFIT_OK) {
-    bsfit_curve_free(&res);
-    return e;
-  }
-  bsfit_curve_move(&res, out);
-  return bsfit__ok(st);
+  bsfit_err e = bsfit__fspline_to_curve(f, dim, periodic, a, out, st);
+  return e != BSFIT_OK ? e : bsfit__ok(st);
 }
 
 static size_t domain_spans(const bsfit_curve *c) {
