@@ -71,14 +71,13 @@ static bsfit_err periodic_multiplicity(const bsfit_curve *c, bsfit_status *st) {
 static bsfit_err validate_periodic(const bsfit_curve *c, bsfit_status *st) {
   size_t i, p = (size_t)c->degree, N, d = (size_t)c->dim;
   const double *U = c->knots;
-  double T, tol;
+  double tol;
   if (c->degree < 1 || c->n < 2 * p + 1 || c->n < p + 2)
     return bsfit__fail(st, BSFIT_ENOTPERIODIC,
                        "periodic curve of degree %d needs more than %zu stored control points",
                        c->degree, c->n);
   N = c->n - p;
-  T = U[N + p] - U[p];
-  tol = 1e-12 * (fabs(U[p]) + fabs(U[N + p]) + T);
+  tol = bsfit__periodic_span_tol(U[p], U[N + p]);
   for (i = 0; i < p * d; i++)
     if (c->ctrl[i] != c->ctrl[N * d + i])
       return bsfit__fail(st, BSFIT_ENOTPERIODIC,

@@ -223,7 +223,8 @@ bsfit_err bsfit__hc_to_curve(const bsfit__hcurve *h, int dim, bsfit_curve *out,
   return BSFIT_OK;
 }
 
-/* Offset o with h->U[o + j] == V[j] (to tol) for all j < nv, or SIZE_MAX. */
+/* Offset o with h->U[o + j] == V[j] (to tol) for all j < nv, or SIZE_MAX. tol must stay
+** below half of V's shortest span, or a shifted offset could match too. */
 static size_t find_run(const bsfit__hcurve *h, const double *V, size_t nv, double tol) {
   size_t o, j, nk = hc_nknots(h);
   for (o = 0; o + nv <= nk; o++) {
@@ -233,10 +234,23 @@ static size_t find_run(const bsfit__hcurve *h, const double *V, size_t nv, doubl
   return (size_t)-1;
 }
 
+/* How far the result's knots may sit from t's period copies: the rounding of t[i] + T
+** (a few ulps of the knots' magnitude, plus a relative slack of the period), but under a
+** quarter of the shortest span, so that only the right offset matches. A relative
+** tolerance of the magnitude alone (1e-10 |t|) matched knots near 4.3e11 spaced by 3 at
+** the wrong offset and returned another curve (fuzz input item6-...-3-moves). */
+static double periodic_match_tol(const double *t, size_t N) {
+  double tol = bsfit__periodic_span_tol(t[0], t[N]);
+  size_t i;
+  for (i = 1; i <= N; i++)
+    if (t[i] > t[i - 1] && tol > 0.25 * (t[i] - t[i - 1])) tol = 0.25 * (t[i] - t[i - 1]);
+  return tol;
+}
+
 bsfit_err bsfit__hc_to_periodic(const bsfit__hcurve *h, int dim, const double *t, size_t N,
                                 bsfit_curve *out, bsfit_status *st) {
   size_t p = (size_t)h->p, d = (size_t)dim, o, i;
-  double tol = 1e-10 * (fabs(t[0]) + fabs(t[N]) + (t[N] - t[0]));
+  double tol = periodic_match_tol(t, N);
   bsfit_curve tmp;
   bsfit_err e;
   bsfit_curve_init(&tmp);

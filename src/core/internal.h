@@ -33,6 +33,15 @@ static inline int bsfit__interrupted(const bsfit_allocator *a) {
   return a != NULL && a->interrupt != NULL && *a->interrupt != 0;
 }
 
+/* How far two spans of a periodic knot vector with period [a, b] may differ and still
+** repeat: the rounding of adding the period (a few ulps of the knots' magnitude) plus a
+** relative slack of the period. Never 1e-12 of the magnitude: knots near 4e11 spaced by 3
+** would then pass with spans 0.9 apart. */
+static inline double bsfit__periodic_span_tol(double a, double b) {
+  double ulps = 64.0 * 2.220446049250313e-16; /* 64 DBL_EPSILON */
+  return ulps * ((a < 0 ? -a : a) + (b < 0 ? -b : b)) + 1e-12 * (b - a);
+}
+
 /* n*size without overflow; 0 on overflow (callers treat 0 as an error). */
 size_t bsfit__mulsize(size_t n, size_t size);
 

@@ -92,7 +92,7 @@ static bsfit_err validate_periodic_u(const bsfit_surface *s, bsfit_status *st) {
                        "surface periodic in u with degree %d needs more than %zu rows", s->degree_u,
                        s->nu);
   N = s->nu - p;
-  tol = 1e-12 * (fabs(U[p]) + fabs(U[N + p]) + (U[N + p] - U[p]));
+  tol = bsfit__periodic_span_tol(U[p], U[N + p]);
   for (i = 0; i < p * row; i++)
     if (s->ctrl[i] != s->ctrl[N * row + i])
       return bsfit__fail(st, BSFIT_ENOTPERIODIC, "wrapped row %zu differs from row %zu",

@@ -242,6 +242,79 @@ static void test_elevate_issue_cases(void **state) {
   }
 }
 
+/* Periodic curves whose knots sit far from zero (a scanner's time stamps, a CAD file's
+** absolute positions): elevating or inserting must give the curve it gives at the
+** origin. Spans are multiples of 1/64, so the shifted knots are exact and the shifted
+** curve is the same curve; the rebuilt period once matched its knots at the wrong offset
+** (a tolerance of 1e-10 of the knots' magnitude, 86 at 4.3e11 > the spans of 3) and came
+** back 62% off (fuzz input tests/fuzz/regressions/curve/item6-...-3-moves). */
+static void test_periodic_far_knots(void **state) {
+  test_rng r = {7};
+  int trial;
+  (void)state;
+  for (trial = 0; trial < 120; trial++) {
+    int p = 1 + trial % 5, op = (trial / 5) % 2, rational = (trial / 10) % 2;
+    double offset = trial < 12 ? 0.0 : pow(10.0, (double)(trial % 13)) * 4.3, U[32], V[32];
+    double P[64], W[32];
+    size_t N = (size_t)p + 2 + (size_t)(rng_uniform(&r) * 6), i;
+    bsfit_curve c, c0, d, d0;
+    bsfit_status st;
+    U[0] = 0.0;
+    for (i = 1; i <= N; i++) U[i] = U[i - 1] + (double)(1 + (int)(rng_uniform(&r) * 256)) / 64.0;
+    for (i = 0; i <= N; i++) V[i] = U[i] + offset;
+    for (i = 0; i < 2 * N; i++) P[i] = rng_range(&r, -100.0, 100.0);
+    for (i = 0; i < N; i++) W[i] = rng_range(&r, 0.5, 2.0);
+    bsfit_curve_init(&c);
+    bsfit_curve_init(&c0);
+    bsfit_curve_init(&d);
+    bsfit_curve_init(&d0);
+    assert_int_equal(bsfit_curve_new_periodic(&c0, p, 2, N, U, P, rational ? W : NULL, NULL, &st), 0);
+    assert_int_equal(bsfit_curve_new_periodic(&c, p, 2, N, V, P, rational ? W : NULL, NULL, &st), 0);
+    if (op == 0) {
+      int t = 1 + trial % 3;
+      assert_int_equal(bsfit_curve_elevate(&c0, t, &d0, &st), BSFIT_OK);
+      assert_int_equal(bsfit_curve_elevate(&c, t, &d, &st), BSFIT_OK);
+    } else {
+      double u = U[1] + (U[2] - U[1]) * 0.25; /* a multiple of 1/256: exact when shifted */
+      assert_int_equal(bsfit_curve_insert_knot(&c0, u, 1, &d0, &st), BSFIT_OK);
+      assert_int_equal(bsfit_curve_insert_knot(&c, u + offset, 1, &d, &st), BSFIT_OK);
+    }
+    assert_true(curve_sound(&d));
+    for (i = 0; i <= 64; i++) {
+      /* a multiple of 1/64, so that u + offset is exact too */
+      double u = floor((U[N] - U[0]) * (double)i) / 64.0, x[2], y[2];
+      assert_int_equal(bsfit_curve_eval(&d0, u, x, NULL), BSFIT_OK);
+      assert_int_equal(bsfit_curve_eval(&d, u + offset, y, NULL), BSFIT_OK);
+      if (pt_dist(x, y, 2) > 1e-9 * 100.0)
+        fail_msg("trial %d (degree %d, %s, offset %g): %g apart at u = %g", trial, p,
+                 op ? "insert" : "elevate", offset, pt_dist(x, y, 2), u);
+    }
+    bsfit_curve_free(&c);
+    bsfit_curve_free(&c0);
+    bsfit_curve_free(&d);
+    bsfit_curve_free(&d0);
+  }
+}
+
+/* A periodic knot vector whose spans do not repeat is refused even far from zero: the
+** validator's tolerance is a few ulps of the knots' magnitude, not 1e-12 of it (0.86 at
+** 4.3e11, which let spans of 3 and 3.5 pass as one period's copy). */
+static void test_periodic_spans_checked_far_from_zero(void **state) {
+  /* degree 3, N = 5: period [0, 15]; the span after the seam's copy is 3.5, not 3 */
+  double K[12] = {-9, -6, -3, 0, 3, 6, 9, 12, 15, 18.5, 21, 24}, P[16] = {0};
+  bsfit_curve c;
+  bsfit_status st;
+  size_t i;
+  (void)state;
+  for (i = 0; i < 5; i++) P[2 * i] = (double)(i % 5), P[2 * i + 1] = (double)(i % 3);
+  for (i = 0; i < 3 * 2; i++) P[2 * 5 + i] = P[i];
+  bsfit_curve_init(&c);
+  assert_int_equal(bsfit_curve_new(&c, 3, 2, 8, K, P, NULL, 1, NULL, &st), BSFIT_ENOTPERIODIC);
+  for (i = 0; i < 12; i++) K[i] += 4.3e11;
+  assert_int_equal(bsfit_curve_new(&c, 3, 2, 8, K, P, NULL, 1, NULL, &st), BSFIT_ENOTPERIODIC);
+  bsfit_curve_free(&c);
+}
+
 /* }==================================================================== */
 
 /* {====================================================================
@@ -456,6 +529,8 @@ static void test_surface_ops(void **state) {
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_elevate_issue_cases),
+      cmocka_unit_test(test_periodic_far_knots),
+      cmocka_unit_test(test_periodic_spans_checked_far_from_zero),
       cmocka_unit_test(test_shape_preserving_ops),
       cmocka_unit_test(test_measuring_ops),
       cmocka_unit_test(test_surface_ops),

@@ -48,11 +48,7 @@ static inline double fz_param(fuzz_in *in, const bsfit_curve *c) {
   if (k < 200) return a + (b - a) * (double)fz_byte(in) / 255.0;
   if (k < 230) return k % 2 ? a : b;
   {
-    double x = fz_double(in);
-    /* item 9 (open): a knot a subnormal distance from another makes a span whose
-    ** reciprocal overflows, and the curve evaluates to NaN after insertion */
-    if (FZ_KNOWN_OPEN && x != 0 && fabs(x) < 1e-290) x = 0;
-    return x;
+    return fz_double(in);
   }
 }
 

@@ -22,13 +22,6 @@ typedef struct fuzz_in {
   size_t n;
 } fuzz_in;
 
-/* Known open findings (issue 13 items owned by the core's hardening, inputs kept in
-** tests/fuzz/pending/): with FZ_KNOWN_OPEN the targets step around them so that a long
-** run can look for new ones. Build with -DFZ_KNOWN_OPEN=0 to hit them again. */
-#ifndef FZ_KNOWN_OPEN
-#define FZ_KNOWN_OPEN 1
-#endif
-
 static inline uint8_t fz_byte(fuzz_in *in) {
   uint8_t b;
   if (in->n == 0) return 0;
