@@ -230,9 +230,15 @@ typedef struct bsfit_reduce_opts {
 } bsfit_reduce_opts;
 
 typedef struct bsfit_reduce_report {
-  double max_deviation; /**< distance between result and input (both ways, bsfit_curve_distance) */
+  double max_deviation; /**< distance between result and input: samples of each projected on
+                             the other (feet by Newton from the same parameter, the largest
+                             refined between samples; global closest points when the bound
+                             below does not already meet tol) */
   size_t knots_added;
   int rounds;           /**< projections computed */
+  double bound;         /**< certified upper bound of the distance, max_t |result(t) - c(t)|
+                             (Bernstein coefficients of the difference per span); INFINITY
+                             when the degrees pass 12 */
 } bsfit_reduce_report;
 
 /** The best approximation of c of degree q in least squares over the whole domain: the
@@ -280,6 +286,9 @@ typedef struct bsfit_smooth_report {
   double turning_before, turning_after; /**< bsfit_curve_total_turning */
   double energy_before, energy_after;   /**< bsfit_curve_bending_energy */
   int evaluations;      /**< filters tried by the search */
+  double bound;         /**< certified upper bound of the distance the result was checked
+                             against (<= tol when changed): curves, max_t |result(t) - c(t)|;
+                             surfaces, max |result(u,v) - s(u,v)| */
 } bsfit_smooth_report;
 
 /** The smoothest curve of degree q within tol of c that kernel filtering gives: for each

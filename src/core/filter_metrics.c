@@ -89,6 +89,12 @@ static measures polygon_measures(const bsfit_curve *c, size_t samples) {
   return m;
 }
 
+void bsfit__curve_shape(const bsfit_curve *c, size_t samples, double *turning, double *energy) {
+  measures m = polygon_measures(c, samples);
+  if (turning != NULL) *turning = m.turning;
+  if (energy != NULL) *energy = m.energy;
+}
+
 bsfit_err bsfit_curve_total_turning(const bsfit_curve *c, size_t samples, double *out,
                                     bsfit_status *st) {
   bsfit_err e = check_measured(c, samples, out, st);

@@ -90,6 +90,11 @@ static bsfit_err make_breaks(const bsfit_curve *c, int q, const double *xs, size
   return BSFIT_OK;
 }
 
+bsfit_err bsfit__curve_breaks(const bsfit_curve *c, int q, const bsfit_allocator *al,
+                              bsfit__breaks *b, bsfit_status *st) {
+  return make_breaks(c, q, NULL, 0, al, b, st);
+}
+
 /* Inserts x (mult 1) after index i. */
 static bsfit_err breaks_insert(const bsfit_allocator *al, bsfit__breaks *b, size_t i, double x) {
   if (b->n == b->cap && bsfit__breaks_reserve(al, b, 2 * b->cap + 8) != BSFIT_OK)
@@ -194,12 +199,17 @@ static void eval_input(const proj *P, size_t s, double t) {
   }
 }
 
-/* Adds the quadrature of [x0, x1] (inside one span of each spline) to band and rhs. */
-static void add_span(proj *P, double x0, double x1) {
-  size_t q = (size_t)P->q, d = P->in->d, i, j, k, g;
+static size_t clampz(size_t v, size_t lo, size_t hi) { return v < lo ? lo : (v > hi ? hi : v); }
+
+/* Adds the quadrature of [x0, x1] to band and rhs: inside the target's span st and the
+** input's span sc (the knot indices the merge in assemble has reached, clamped as
+** bsfit_knots_find_span would). */
+static void add_span(proj *P, double x0, double x1, size_t st, size_t sc) {
+  size_t q = (size_t)P->q, d = P->in->d, i, j, k, g, base;
   double mid = 0.5 * (x0 + x1), half = 0.5 * (x1 - x0), Nt[BSFIT_MAX_DEGREE + 1];
-  size_t st = bsfit_knots_find_span(P->T, P->nraw, P->q, mid);
-  size_t sc = bsfit_knots_find_span(P->in->U, P->in->n, P->in->p, mid), base = st - q;
+  st = clampz(st, q, P->nraw - 1);
+  sc = clampz(sc, (size_t)P->in->p, P->in->n - 1);
+  base = st - q;
   for (g = 0; g < (size_t)P->ng; g++) {
     double t = mid + half * P->gx[g], w = half * P->gw[g];
     bsfit_basis_funs(st, t, P->q, P->T, Nt);
@@ -225,7 +235,7 @@ static bsfit_err assemble(proj *P, double a, double b, const bsfit_allocator *al
     while (j < P->nt && T[j] <= x) j++;
     if (i < nu && U[i] < next) next = U[i];
     if (j < P->nt && T[j] < next) next = T[j];
-    add_span(P, x, next);
+    add_span(P, x, next, j > 0 ? j - 1 : 0, i > 0 ? i - 1 : 0);
     x = next;
     if ((++spans & 4095) == 0 && bsfit__interrupted(al))
       return bsfit__fail(st, BSFIT_EINTR, "degree reduction interrupted");
@@ -395,6 +405,32 @@ static bsfit_err split_spans(bsfit__breaks *b, const double *span_max, double to
   return BSFIT_OK;
 }
 
+/* The deviation of one projection res from the measured curve m, into rep and span_max:
+** the certified bound (filter_bound.c; polynomial curves) when it meets tol, measured by
+** the feet from the same parameter (a true distance, within the bound); otherwise the
+** sampled distance, the global closest points confirming a result the cheap local measure
+** finds within tol. */
+static bsfit_err deviation(const bsfit_curve *res, const bsfit_curve *m, const bsfit__reduce_arg *r,
+                           const bsfit__breaks *b, double *span_max, const bsfit_allocator *al,
+                           bsfit_reduce_report *rep, bsfit_status *st) {
+  bsfit__bound bd;
+  /* a rational difference is no polynomial: its Bernstein form would bound nothing */
+  bsfit_err e = m->weights != NULL ? BSFIT_EDEGREE
+                                   : bsfit__curve_diff_bound(res, m, r->tol, b, span_max, al,
+                                                             &bd, st);
+  if (e != BSFIT_OK && e != BSFIT_EDEGREE) return e;
+  rep->bound = e == BSFIT_OK ? bd.bound : INFINITY;
+  if (e == BSFIT_OK && bd.bound <= r->tol)
+    return bsfit__curve_distance(res, m, r->per_span, BSFIT__DIST_FEET, NULL, NULL, al,
+                                 &rep->max_deviation, st);
+  e = bsfit__curve_distance(res, m, r->per_span, BSFIT__DIST_LOCAL, b, span_max, al,
+                            &rep->max_deviation, st);
+  if (e == BSFIT_OK && rep->max_deviation <= r->tol)
+    e = bsfit__curve_distance(res, m, r->per_span, BSFIT__DIST_CORRESPONDING, b, span_max, al,
+                              &rep->max_deviation, st);
+  return e;
+}
+
 bsfit_err bsfit__reduce_loop(const bsfit_curve *c, const bsfit__reduce_arg *r, bsfit__breaks *b,
                              const bsfit_allocator *al, bsfit_curve *res,
                              bsfit_reduce_report *rep, bsfit_status *st) {
@@ -414,15 +450,8 @@ bsfit_err bsfit__reduce_loop(const bsfit_curve *c, const bsfit__reduce_arg *r, b
       span_max = bsfit__alloc(al, cap * sizeof(double));
       if (span_max == NULL) e = bsfit__fail(st, BSFIT_ENOMEM, "out of memory for span deviations");
     }
-    /* the local measure (an upper bound) first: the global one, dearer, only to confirm
-    ** a result the local one finds within tol */
     if (e == BSFIT_OK)
-      e = bsfit__curve_distance(res, r->measure ? r->measure : c, r->per_span, BSFIT__DIST_LOCAL,
-                                b, span_max, al, &rep->max_deviation, st);
-    if (e == BSFIT_OK && !r->local && rep->max_deviation <= r->tol)
-      e = bsfit__curve_distance(res, r->measure ? r->measure : c, r->per_span,
-                                BSFIT__DIST_CORRESPONDING, b, span_max, al, &rep->max_deviation,
-                                st);
+      e = deviation(res, r->measure ? r->measure : c, r, b, span_max, al, rep, st);
     rep->rounds++;
     if (e != BSFIT_OK || rep->max_deviation <= r->tol) break;
     /* knots that do not lower the deviation cannot meet tol: the input's own detail */

@@ -233,7 +233,7 @@ static double opt_tol(lua_State *L, int t, double def) {
   return tol;
 }
 
-/* bs.filter.reduce(C [, opts]) -> curve, {max_deviation, knots_added = {...}, rounds} */
+/* bs.filter.reduce(C [, opts]) -> curve, {max_deviation, bound, knots_added = {...}, rounds} */
 static int filter_reduce(lua_State *L) {
   static const char *const names[] = {"degree", "tol", "max_added", "samples", NULL};
   bsfit_curve *c = bsfit__lua_checkcurve(L, 1);
@@ -257,8 +257,9 @@ static int filter_reduce(lua_State *L) {
   ud = bsfit__lua_newcurve(L, &a);
   e = bsfit_filter_reduce_curve(c, &o, &ud->c, &rep, &st);
   if (e != BSFIT_OK) return bsfit__lua_result(L, e, &st, 0, 2);
-  lua_createtable(L, 0, 3);
+  lua_createtable(L, 0, 4);
   set_number(L, "max_deviation", rep.max_deviation);
+  set_number(L, "bound", rep.bound);
   set_integer(L, "rounds", rep.rounds);
   push_added(L, c, &ud->c);
   lua_setfield(L, -2, "knots_added");
@@ -266,7 +267,7 @@ static int filter_reduce(lua_State *L) {
 }
 
 static void push_smooth_report(lua_State *L, const bsfit_smooth_report *r) {
-  lua_createtable(L, 0, 10);
+  lua_createtable(L, 0, 11);
   lua_pushboolean(L, r->changed);
   lua_setfield(L, -2, "changed");
   set_integer(L, "order", r->order);
@@ -278,6 +279,7 @@ static void push_smooth_report(lua_State *L, const bsfit_smooth_report *r) {
   set_number(L, "energy_before", r->energy_before);
   set_number(L, "energy_after", r->energy_after);
   set_integer(L, "evaluations", r->evaluations);
+  set_number(L, "bound", r->bound);
 }
 
 /* The options of bs.filter.smooth at 2 into o. */
