@@ -12,51 +12,8 @@
 #include <string.h>
 
 /* {====================================================================
-** Raw splines
+** Uniform knots
 ** ===================================================================== */
-
-void bsfit__fspline_free(const bsfit_allocator *a, bsfit__fspline *f) {
-  bsfit__free(a, f->U, (f->n + (size_t)f->p + 1) * sizeof(double));
-  bsfit__free(a, f->P, f->n * f->d * sizeof(double));
-  memset(f, 0, sizeof *f);
-}
-
-bsfit_err bsfit__fspline_alloc(const bsfit_allocator *a, bsfit__fspline *f, int p, size_t n,
-                               size_t d, bsfit_status *st) {
-  size_t np = bsfit__mulsize(n, d), bytes = bsfit__mulsize(np, sizeof(double));
-  memset(f, 0, sizeof *f);
-  if (bytes == 0) return bsfit__fail(st, BSFIT_EINVAL, "filtered spline of %zu x %zu too large", n, d);
-  f->U = bsfit__alloc(a, (n + (size_t)p + 1) * sizeof(double));
-  f->P = bsfit__alloc(a, bytes);
-  f->p = p;
-  f->n = n;
-  f->d = d;
-  if (f->U == NULL || f->P == NULL) {
-    bsfit__fspline_free(a, f);
-    return bsfit__fail(st, BSFIT_ENOMEM, "out of memory for a filtered spline of %zu points", n);
-  }
-  return BSFIT_OK;
-}
-
-bsfit__fview bsfit__curve_view(const bsfit_curve *c) {
-  bsfit__fview v;
-  v.p = c->degree;
-  v.n = c->n;
-  v.d = (size_t)c->dim;
-  v.U = c->knots;
-  v.P = c->ctrl;
-  return v;
-}
-
-bsfit__fview bsfit__fspline_view(const bsfit__fspline *f) {
-  bsfit__fview v;
-  v.p = f->p;
-  v.n = f->n;
-  v.d = f->d;
-  v.U = f->U;
-  v.P = f->P;
-  return v;
-}
 
 int bsfit__knots_equal_spans(const double *U, size_t nk) {
   size_t i;

@@ -133,23 +133,6 @@ bsfit_err bsfit_filter_kernel_curve_delta(const bsfit_curve *c, int order, doubl
 ** a transposition, the v passes, and the transposition back.
 ** ===================================================================== */
 
-void bsfit__transpose_net(const double *src, size_t rows, size_t cols, size_t dim, double *dst) {
-  size_t i, j;
-  for (i = 0; i < rows; i++)
-    for (j = 0; j < cols; j++)
-      memcpy(dst + (j * rows + i) * dim, src + (i * cols + j) * dim, dim * sizeof(double));
-}
-
-bsfit__fview bsfit__surface_view_u(const bsfit_surface *s) {
-  bsfit__fview v;
-  v.p = s->degree_u;
-  v.n = s->nu;
-  v.d = bsfit__mulsize(s->nv, (size_t)s->dim);
-  v.U = s->knots_u;
-  v.P = s->ctrl;
-  return v;
-}
-
 /* The v passes on the u-filtered spline fu, then the surface into out. */
 static bsfit_err surface_v(const bsfit_surface *s, const bsfit__fspline *fu,
                            const bsfit__pass *av, const bsfit_allocator *a, bsfit_surface *out,

@@ -14,6 +14,7 @@
 */
 #include "filter_internal.h"
 #include "fit_internal.h"
+#include "quadrature.h"
 
 #include <float.h>
 #include <math.h>
@@ -145,30 +146,6 @@ static size_t target_knot_room(const bsfit__breaks *b, int q) {
 /* {====================================================================
 ** The projection
 ** ===================================================================== */
-
-/* Nodes x and weights w of the n-point Gauss-Legendre rule on [-1, 1] (Newton's method
-** on the Legendre polynomial P_n from Chebyshev-like starting points). */
-static void gauss_legendre(int n, double *x, double *w) {
-  int i, j, it;
-  for (i = 0; i < (n + 1) / 2; i++) {
-    double z = cos(3.14159265358979323846 * ((double)i + 0.75) / ((double)n + 0.5)), dp = 1.0;
-    for (it = 0; it < 100; it++) {
-      double p0 = 1.0, p1 = z, dz;
-      for (j = 2; j <= n; j++) {
-        double p2 = ((2.0 * j - 1.0) * z * p1 - (j - 1.0) * p0) / (double)j;
-        p0 = p1;
-        p1 = p2;
-      }
-      dp = (double)n * (z * p1 - p0) / (z * z - 1.0);
-      dz = p1 / dp;
-      z -= dz;
-      if (fabs(dz) <= 1e-16) break;
-    }
-    x[i] = -z;
-    x[n - 1 - i] = z;
-    w[i] = w[n - 1 - i] = 2.0 / ((1.0 - z * z) * dp * dp);
-  }
-}
 
 /* Everything one assembly needs. */
 typedef struct proj {
@@ -317,7 +294,7 @@ bsfit_err bsfit__project(const bsfit__fview *in, const bsfit_curve *rational, in
   P.nraw = nraw;
   P.nt = nraw + (size_t)q + 1;
   P.T = T;
-  gauss_legendre(P.ng, P.gx, P.gw);
+  bsfit__gauss_legendre(P.ng, P.gx, P.gw);
   bb = bsfit__mulsize(nraw, (size_t)q + 1) * sizeof(double);
   rb = bsfit__mulsize(nraw, d) * sizeof(double);
   P.band = bsfit__alloc(al, bb);
@@ -349,28 +326,6 @@ bsfit_err bsfit__project(const bsfit__fview *in, const bsfit_curve *rational, in
 /* {====================================================================
 ** Knots added until the tolerance is met
 ** ===================================================================== */
-
-bsfit_err bsfit__fspline_to_curve(bsfit__fspline *f, int dim, int periodic,
-                                  const bsfit_allocator *a, bsfit_curve *out, bsfit_status *st) {
-  bsfit_curve res;
-  bsfit_err e;
-  bsfit_curve_init(&res);
-  res.degree = f->p;
-  res.dim = dim;
-  res.n = f->n;
-  res.knots = f->U;
-  res.ctrl = f->P;
-  res.periodic = periodic;
-  res.alloc = *a;
-  memset(f, 0, sizeof *f);
-  e = bsfit_curve_validate(&res, st);
-  if (e != BSFIT_OK) {
-    bsfit_curve_free(&res);
-    return e;
-  }
-  bsfit_curve_move(&res, out);
-  return BSFIT_OK;
-}
 
 /* One projection of c onto the break points b, into res. */
 static bsfit_err project_curve(const bsfit_curve *c, int q, const bsfit__breaks *b,
