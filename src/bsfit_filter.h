@@ -261,6 +261,38 @@ BSFIT_API bsfit_err bsfit_filter_reduce_curve(const bsfit_curve *c, const bsfit_
                                               bsfit_curve *out, bsfit_reduce_report *rep,
                                               bsfit_status *st);
 
+/** Options of bsfit_filter_reduce_surface. Zero-initialise, then set what you need. */
+typedef struct bsfit_reduce_surface_opts {
+  int degree_u, degree_v; /**< 1..12 each; 0 means 3 */
+  double tol;             /**< > 0; INFINITY: one projection on the surface's break points */
+  size_t max_added;       /**< knots that may be added (both directions); 0: 10 per break point
+                               + 100 */
+} bsfit_reduce_surface_opts;
+
+/** The best approximation of a polynomial surface by degrees (qu, qv) in least squares over
+** its whole domain: the tensor-product L2 projection on its own break points in each
+** direction, as smooth there as s is (at most C^{q-1}), clamped, or periodic in u when s is
+** closed around u (periodic_u). Computed as the curve projection of
+** bsfit_filter_reduce_curve along u on whole rows of the net, then along v (the tensor
+** Gram matrix is the Kronecker product of the two): banded solves only. The distance to s
+** is bounded (certified) by max |R(u,v) - s(u,v)| from the Bernstein coefficients of the
+** difference on every patch (a bound of the true distance, not the distance itself); while
+** it exceeds tol, a knot is added in the middle of every u span and every v span holding a
+** patch beyond tol, and the projection repeated. A surface that already is of degrees
+** <= (qu, qv) on those break points is reproduced.
+** @param[out] out  the result (freed first; may be s itself).
+** @param[out] rep  max_deviation and bound: the certified bound; knots_added: u and v
+**                  together; rounds. Or NULL.
+** @return BSFIT_OK; BSFIT_EDEGREE (a degree of the result or of s outside 1..12);
+**         BSFIT_ENONFINITE (tol NaN); BSFIT_EINVAL (NULL argument, rational s, tol <= 0);
+**         BSFIT_ETOOFEW; BSFIT_ENOCONV (tol not met within max_added knots); BSFIT_ENOTSPD;
+**         BSFIT_EINTR; BSFIT_ENOMEM; any code of bsfit_surface_validate. On error out is
+**         unchanged. */
+BSFIT_API bsfit_err bsfit_filter_reduce_surface(const bsfit_surface *s,
+                                                const bsfit_reduce_surface_opts *o,
+                                                bsfit_surface *out, bsfit_reduce_report *rep,
+                                                bsfit_status *st);
+
 /** Distance between two curves as point sets: samples (per_span per knot span of each
 ** curve, ends included) projected on the other curve by bsfit_curve_closest_many, the
 ** largest distance either way (the Hausdorff distance, up to what lies between samples).
@@ -312,15 +344,16 @@ BSFIT_API bsfit_err bsfit_filter_smooth_curve(const bsfit_curve *c, const bsfit_
 ** of each direction, the widest within tol; each result projected (L2, tensor product) on
 ** degree q in both directions on the surface's own break points; the order with the least
 ** thin-plate energy (the sampled integral of |S_uu|^2 + 2 |S_uv|^2 + |S_vv|^2 over the
-** parameter domain) wins. The distance is bounded by the largest difference at equal
-** parameters on a grid (4 samples per knot span each way; the input extended as constant
-** beyond its edges): an upper bound of the distance between the surfaces. No knots are
-** added. The result keeps the domain of s. Report: changed, order, delta (the u
-** half-width; along v it is in the same proportion to the v spacing), max_deviation
-** (the bound), energy_before/after (thin plate), evaluations; turning is 0. When nothing
-** smoother is within tol, out is a copy of s and changed is 0.
-** @return BSFIT_OK; BSFIT_EINVAL (NULL, rational, tol <= 0, order out of range);
-**         BSFIT_ENONFINITE (tol); BSFIT_EDEGREE; BSFIT_EINTR; BSFIT_ENOMEM. */
+** parameter domain) wins. The distance is a certified upper bound, max |R(u,v) - s(u,v)|
+** from the Bernstein coefficients of the difference on every patch (every point of either
+** surface lies that close to the other): not the distance itself, at least it. No knots
+** are added. The result keeps the domain of s. Report: changed, order, delta (the u
+** half-width; along v it is in the same proportion to the v spacing), max_deviation and
+** bound (the bound), energy_before/after (thin plate), evaluations; turning is 0. When
+** nothing smoother is within tol, out is a copy of s and changed is 0.
+** @return BSFIT_OK; BSFIT_EINVAL (NULL, rational, closed around u, tol <= 0, order out of
+**         range); BSFIT_ENONFINITE (tol); BSFIT_EDEGREE (degrees of s or q above 12);
+**         BSFIT_EINTR; BSFIT_ENOMEM. */
 BSFIT_API bsfit_err bsfit_filter_smooth_surface(const bsfit_surface *s,
                                                 const bsfit_smooth_opts *o, bsfit_surface *out,
                                                 bsfit_smooth_report *rep, bsfit_status *st);

@@ -123,7 +123,7 @@ static double interval_bound(const cbound *w, double x0, double x1, int depth, d
   /* values carry about (m + 2) roundings of the coordinates' size each */
   top += w->z->norm * 16.0 * (double)(m + 2) * DBL_EPSILON * scale;
   if (top > w->thr && val <= w->thr && depth < w->depth && x1 - x0 > 4.0 * DBL_EPSILON * scale) {
-    double mid = 0.5 * (x0 + x1), l1, l2;
+    double mid = 0.5 * (x0 + x1), l1 = 0.0, l2 = 0.0;
     double b1 = interval_bound(w, x0, mid, depth + 1, &l1);
     double b2 = interval_bound(w, mid, x1, depth + 1, &l2);
     *low = fmax(*low, fmax(l1, l2));
@@ -280,6 +280,8 @@ static size_t merged(const double *U1, size_t n1, const double *U2, size_t n2, d
 }
 
 bsfit_err bsfit__surface_diff_bound(const bsfit_surface *A, const bsfit_surface *B, double thr,
+                                    const bsfit__breaks *bu, double *max_u,
+                                    const bsfit__breaks *bv, double *max_v,
                                     const bsfit_allocator *al, bsfit__bound *out,
                                     bsfit_status *st) {
   size_t ku = A->nu + B->nu + (size_t)(A->degree_u + B->degree_u) + 4;
@@ -309,13 +311,23 @@ bsfit_err bsfit__surface_diff_bound(const bsfit_surface *A, const bsfit_surface 
   w.B = B;
   w.thr = thr;
   out->bound = out->low = 0.0;
+  if (max_u != NULL) memset(max_u, 0, (bu->n - 1) * sizeof(double));
+  if (max_v != NULL) memset(max_v, 0, (bv->n - 1) * sizeof(double));
   for (i = 0; i + 1 < nxu; i++) {
+    size_t su = max_u != NULL ? bsfit__break_span(bu, 0.5 * (xu[i] + xu[i + 1])) : 0;
     if (bsfit__interrupted(al)) {
       bsfit__free(al, xu, bytes);
       return bsfit__fail(st, BSFIT_EINTR, "distance bound interrupted");
     }
-    for (j = 0; j + 1 < nxv; j++)
-      out->bound = fmax(out->bound, patch_bound(&w, xu + i, xv + j, 0, &out->low));
+    for (j = 0; j + 1 < nxv; j++) {
+      double bd = patch_bound(&w, xu + i, xv + j, 0, &out->low);
+      out->bound = fmax(out->bound, bd);
+      if (max_u != NULL) max_u[su] = fmax(max_u[su], bd);
+      if (max_v != NULL) {
+        size_t sv = bsfit__break_span(bv, 0.5 * (xv[j] + xv[j + 1]));
+        max_v[sv] = fmax(max_v[sv], bd);
+      }
+    }
   }
   bsfit__free(al, xu, bytes);
   return BSFIT_OK;

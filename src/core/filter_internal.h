@@ -149,6 +149,18 @@ void bsfit__curve_shape(const bsfit_curve *c, size_t samples, double *turning, d
 /* Index of the break span [x_i, x_{i+1}) holding u (clamped to the first and last). */
 size_t bsfit__break_span(const bsfit__breaks *br, double u);
 
+/* Break points xs (nx, strictly increasing from a to e) or, xs NULL, the distinct knots in
+** [a, e] of the nk knots U of a spline of degree p; each with the multiplicity degree q
+** needs there to be as smooth as that spline (filter_reduce.c). */
+bsfit_err bsfit__knot_breaks(const double *U, size_t nk, int p, double a, double e, int q,
+                             const double *xs, size_t nx, const bsfit_allocator *al,
+                             bsfit__breaks *b, bsfit_status *st);
+
+/* A break point (mult 1) in the middle of every break span whose span_max exceeds tol,
+** unless narrower than 1e-6 of the whole; *count receives how many (filter_reduce.c). */
+bsfit_err bsfit__split_spans(bsfit__breaks *b, const double *span_max, double tol,
+                            const bsfit_allocator *al, size_t *count);
+
 /* The distinct knots of c in its domain as break points, each with the multiplicity
 ** degree q needs there to be as smooth as c (filter_reduce.c). */
 bsfit_err bsfit__curve_breaks(const bsfit_curve *c, int q, const bsfit_allocator *al,
@@ -185,10 +197,21 @@ bsfit_err bsfit__curve_diff_bound(const bsfit_curve *A, const bsfit_curve *B, do
                                   const bsfit_allocator *al, bsfit__bound *out,
                                   bsfit_status *st);
 
-/* The same for surfaces of one domain, max over it of |A(u,v) - B(u,v)|. */
+/* The same for surfaces of one domain, max over it of |A(u,v) - B(u,v)|; max_u (bu->n - 1
+** values) and max_v (bv->n - 1), when not NULL, receive the largest patch bound in each
+** break span of bu and bv. */
 bsfit_err bsfit__surface_diff_bound(const bsfit_surface *A, const bsfit_surface *B, double thr,
+                                    const bsfit__breaks *bu, double *max_u,
+                                    const bsfit__breaks *bv, double *max_v,
                                     const bsfit_allocator *al, bsfit__bound *out,
                                     bsfit_status *st);
+
+/* The tensor L2 projection of the polynomial surface F on degrees (qu, qv) on the break
+** points bu x bv (over that rectangle; periodic in u when periodic_u, F then closed
+** around u with the period of bu), into out (filter_reduce_surface.c). */
+bsfit_err bsfit__project_surface(const bsfit_surface *F, int qu, int qv, const bsfit__breaks *bu,
+                                 const bsfit__breaks *bv, int periodic_u,
+                                 const bsfit_allocator *al, bsfit_surface *out, bsfit_status *st);
 
 /* }==================================================================== */
 

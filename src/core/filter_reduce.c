@@ -60,21 +60,18 @@ bsfit_err bsfit__breaks_reserve(const bsfit_allocator *a, bsfit__breaks *b, size
   return BSFIT_OK;
 }
 
-/* The multiplicity q needs at x to be as smooth as c there (at most C^{q-1}): c has
-** continuity p - m at a knot of multiplicity m, and C^p elsewhere. */
-static int target_mult(const bsfit_curve *c, int q, double x) {
-  int m = bsfit_knots_multiplicity(c->knots, c->n + (size_t)c->degree + 1, x);
-  int k = c->degree - m, t = k >= q ? 1 : q - k;
+/* The multiplicity q needs at x to be as smooth as the spline of degree p on the nk knots
+** U there (at most C^{q-1}): continuity p - m at a knot of multiplicity m, C^p elsewhere. */
+static int target_mult(const double *U, size_t nk, int p, int q, double x) {
+  int m = bsfit_knots_multiplicity(U, nk, x);
+  int k = p - m, t = k >= q ? 1 : q - k;
   return t < 1 ? 1 : (t > q ? q : t);
 }
 
-/* Break points: xs (strictly increasing, xs[0] = a, xs[nx-1] = b) or, when xs is NULL,
-** the distinct knots of c in its domain [a, b]. */
-static bsfit_err make_breaks(const bsfit_curve *c, int q, const double *xs, size_t nx,
-                             const bsfit_allocator *al, bsfit__breaks *b, bsfit_status *st) {
-  size_t nk = c->n + (size_t)c->degree + 1, i;
-  double a, e;
-  bsfit_curve_domain(c, &a, &e);
+bsfit_err bsfit__knot_breaks(const double *U, size_t nk, int p, double a, double e, int q,
+                             const double *xs, size_t nx, const bsfit_allocator *al,
+                             bsfit__breaks *b, bsfit_status *st) {
+  size_t i;
   memset(b, 0, sizeof *b);
   if (bsfit__breaks_reserve(al, b, (xs ? nx : nk) + 2) != BSFIT_OK)
     return bsfit__fail(st, BSFIT_ENOMEM, "out of memory for %zu break points", nk);
@@ -84,11 +81,21 @@ static bsfit_err make_breaks(const bsfit_curve *c, int q, const double *xs, size
   } else {
     b->x[b->n++] = a;
     for (i = 0; i < nk; i++)
-      if (c->knots[i] > b->x[b->n - 1] && c->knots[i] < e) b->x[b->n++] = c->knots[i];
+      if (U[i] > b->x[b->n - 1] && U[i] < e) b->x[b->n++] = U[i];
     b->x[b->n++] = e;
   }
-  for (i = 0; i < b->n; i++) b->mult[i] = target_mult(c, q, b->x[i]);
+  for (i = 0; i < b->n; i++) b->mult[i] = target_mult(U, nk, p, q, b->x[i]);
   return BSFIT_OK;
+}
+
+/* Break points: xs (strictly increasing, xs[0] = a, xs[nx-1] = b) or, when xs is NULL,
+** the distinct knots of c in its domain [a, b]. */
+static bsfit_err make_breaks(const bsfit_curve *c, int q, const double *xs, size_t nx,
+                             const bsfit_allocator *al, bsfit__breaks *b, bsfit_status *st) {
+  double a, e;
+  bsfit_curve_domain(c, &a, &e);
+  return bsfit__knot_breaks(c->knots, c->n + (size_t)c->degree + 1, c->degree, a, e, q, xs, nx,
+                            al, b, st);
 }
 
 bsfit_err bsfit__curve_breaks(const bsfit_curve *c, int q, const bsfit_allocator *al,
@@ -225,8 +232,10 @@ static bsfit_err assemble(proj *P, double a, double b, const bsfit_allocator *al
 ** holds only the arrays that solver reads. */
 static bsfit_err solve_periodic(proj *P, const bsfit_allocator *al, double *ctrl,
                                 bsfit_status *st) {
-  size_t q = (size_t)P->q, nraw = P->nraw, N = nraw - q, n1 = N - q;
-  size_t sizes[6] = {(q + 1) * n1, n1 * q, n1 * q, q * q, N * 4, 3 * nraw}, total = 0, i;
+  size_t q = (size_t)P->q, nraw = P->nraw, N = nraw - q, n1 = N - q, d = P->in->d;
+  /* r2 holds N points of d values, work q of them (d is a whole row of a surface's net) */
+  size_t sizes[6] = {(q + 1) * n1, n1 * q, n1 * q, q * q, N * d, 3 * nraw + q * d};
+  size_t total = 0, i;
   bsfit_fitter f;
   double *blk;
   bsfit_err e;
@@ -347,8 +356,8 @@ static bsfit_err project_curve(const bsfit_curve *c, int q, const bsfit__breaks 
 ** span down, so the indices still to visit do not move), unless the span is already
 ** narrower than MIN_SPAN of the domain: a deviation that refining does not cure there is
 ** the input's own (a corner, a spike), not the projection's. Returns the number added. */
-static bsfit_err split_spans(bsfit__breaks *b, const double *span_max, double tol,
-                             const bsfit_allocator *al, size_t *count) {
+bsfit_err bsfit__split_spans(bsfit__breaks *b, const double *span_max, double tol,
+                            const bsfit_allocator *al, size_t *count) {
   size_t i = b->n - 1;
   double w = MIN_SPAN * (b->x[b->n - 1] - b->x[0]);
   *count = 0;
@@ -418,7 +427,7 @@ bsfit_err bsfit__reduce_loop(const bsfit_curve *c, const bsfit__reduce_arg *r, b
                       "(deviation %g)", r->degree, r->tol, added, rep->max_deviation);
       break;
     }
-    e = split_spans(b, span_max, r->tol, al, &now);
+    e = bsfit__split_spans(b, span_max, r->tol, al, &now);
     if (e != BSFIT_OK) {
       e = bsfit__fail(st, BSFIT_ENOMEM, "out of memory adding knots");
       break;
