@@ -95,15 +95,30 @@ typedef struct cbound {
   int depth;
 } cbound;
 
+/* c at t inside its knot span s (polynomial c, t already in c's period). */
+static void eval_in_span(const bsfit_curve *c, size_t s, double t, double *out) {
+  double N[BSFIT__BERN_MAX + 1];
+  size_t p = (size_t)c->degree, j, k, d = (size_t)c->dim;
+  const double *P = c->ctrl + (s - p) * d;
+  bsfit_basis_funs(s, t, c->degree, c->knots, N);
+  for (k = 0; k < d; k++) out[k] = 0.0;
+  for (j = 0; j <= p; j++)
+    for (k = 0; k < d; k++) out[k] += N[j] * P[j * d + k];
+}
+
 /* Bound of |A - B| over [x0, x1]; *low receives the largest value seen (a lower bound of
-** the maximum). */
+** the maximum). Each curve is one polynomial there: its span is found once, at the
+** middle (B's parameter moved into its period when B is closed: shift). */
 static double interval_bound(const cbound *w, double x0, double x1, int depth, double *low) {
   double V[(BSFIT__BERN_MAX + 1) * 4], a[4], b[4], scale = 0.0, top = 0.0, val = 0.0;
+  double mid = 0.5 * (x0 + x1), shift = bsfit__curve_wrap(w->B, mid) - mid;
   int m = w->z->m, n = m + 1, d = w->A->dim, i, k, c;
+  size_t sa = bsfit_knots_find_span(w->A->knots, w->A->n, w->A->degree, mid);
+  size_t sb = bsfit_knots_find_span(w->B->knots, w->B->n, w->B->degree, mid + shift);
   for (i = 0; i < n; i++) {
     double t = x0 + (x1 - x0) * node(m, i), s2 = 0.0;
-    bsfit__curve_eval_unchecked(w->A, t, a);
-    bsfit__curve_eval_unchecked(w->B, t, b);
+    eval_in_span(w->A, sa, t, a);
+    eval_in_span(w->B, sb, t + shift, b);
     for (c = 0; c < d; c++) {
       V[i * d + c] = a[c] - b[c];
       s2 += V[i * d + c] * V[i * d + c];
@@ -123,7 +138,7 @@ static double interval_bound(const cbound *w, double x0, double x1, int depth, d
   /* values carry about (m + 2) roundings of the coordinates' size each */
   top += w->z->norm * 16.0 * (double)(m + 2) * DBL_EPSILON * scale;
   if (top > w->thr && val <= w->thr && depth < w->depth && x1 - x0 > 4.0 * DBL_EPSILON * scale) {
-    double mid = 0.5 * (x0 + x1), l1 = 0.0, l2 = 0.0;
+    double l1 = 0.0, l2 = 0.0;
     double b1 = interval_bound(w, x0, mid, depth + 1, &l1);
     double b2 = interval_bound(w, mid, x1, depth + 1, &l2);
     *low = fmax(*low, fmax(l1, l2));

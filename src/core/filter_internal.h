@@ -132,6 +132,7 @@ typedef struct bsfit__reduce_arg {
   double tol;
   size_t per_span, max_added;
   const bsfit_curve *measure; /* the curve the deviation is measured to (NULL: the input) */
+  int bound_only;             /* a bound within tol ends it, unmeasured (max_deviation: it) */
 } bsfit__reduce_arg;
 
 /* Projection of c on b, knots added in the middle of every span farther than tol from

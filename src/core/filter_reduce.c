@@ -384,6 +384,10 @@ static bsfit_err deviation(const bsfit_curve *res, const bsfit_curve *m, const b
                                                              &bd, st);
   if (e != BSFIT_OK && e != BSFIT_EDEGREE) return e;
   rep->bound = e == BSFIT_OK ? bd.bound : INFINITY;
+  if (e == BSFIT_OK && bd.bound <= r->tol && r->bound_only) {
+    rep->max_deviation = bd.bound;
+    return BSFIT_OK;
+  }
   if (e == BSFIT_OK && bd.bound <= r->tol)
     return bsfit__curve_distance(res, m, r->per_span, BSFIT__DIST_FEET, NULL, NULL, al,
                                  &rep->max_deviation, st);

@@ -29,6 +29,8 @@
 #define REPORT_SAMPLES 4 /* the measured distance of the result: samples per knot span */
 #define ENERGY_SAMPLES 8 /* energy and turning: samples per knot span of C (>= 256) */
 #define BASE_SHARE 0.25  /* of tol, for C's own reduction when its degree exceeds q */
+#define FOLLOW 0.002    /* the winner's projection follows its filtered curve this closely */
+#define RIPPLE 1.005    /* ... when its energy exceeds the filtered curve's by this factor */
 #define MIN_GAIN 0.01   /* a result less smoother than this is not worth moving C */
 #define MEASURED_BELOW 0.8 /* a winner measured below this much of tol is searched again ... */
 #define MEASURED_MARGIN 0.995 /* ... by its measured distance, kept below this much of tol */
@@ -206,19 +208,23 @@ static double next_width(const bracket *k, double target, double dmax) {
 }
 
 /* The widest feasible delta of order r, into best (left alone when none is found), in a
-** few evaluations (next_width). The bound is not monotone in delta near the noise floor (it follows
-** the noise the filter removes, up and down): the search keeps the widest feasible width
-** it saw and narrows the bracket above it. */
+** few evaluations (next_width). The bound is not monotone in delta near the noise floor (it
+** follows the noise the filter removes, up and down): the search keeps the widest feasible
+** width it saw and narrows the bracket above it. */
 static bsfit_err search_order(smooth_ctx *x, int r, candidate *best, bsfit_status *st) {
   size_t spans = x->base->n - 1;
   double h = (x->b - x->a) / (double)spans, dmax = (x->b - x->a) / (2.0 * r);
   /* same kernel variance r delta^2 / 3, about the same bound: the previous order's answer
   ** scaled is a close first guess */
   double d = fmin(x->last_order ? x->last_delta * sqrt((double)x->last_order / r) : h, dmax);
-  if (best->order == r) d = fmin(best->delta * 1.2, dmax); /* the measured pass goes on */
   bracket k = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
   bsfit_err e;
   int i;
+  if (best->order == r && best->dist >= 0.0) { /* the measured pass goes on from there */
+    k.lo = best->delta;
+    k.blo = judged(x, best);
+    d = next_width(&k, TARGET * x->tol, dmax);
+  }
   for (i = 0; i < MAX_EVALS; i++) {
     double bd;
     if ((e = try_delta(x, r, d, best, &bd, st)) != BSFIT_OK) return e;
@@ -309,10 +315,68 @@ static bsfit_err unchanged(smooth_ctx *x, bsfit_curve *res, bsfit_smooth_report 
   return e;
 }
 
+/* The winner's filtered curve followed more closely: its projection with knots added
+** where it strays from the filtered curve by more than FOLLOW tol (the L2 projection on
+** C's break points alone ripples where the filter rounded a corner over a few spans, and
+** the ripples cost energy). Kept when still within tol of C (bound, or measured in the
+** measured pass) and smoother. Failing to follow leaves the winner as it was. */
+static bsfit_err follow(smooth_ctx *x, candidate *k, bsfit_status *st) {
+  bsfit__reduce_arg ra;
+  bsfit_reduce_report rr;
+  bsfit__breaks b;
+  candidate f;
+  bsfit_curve F;
+  bsfit_err e;
+  cand_init(&f);
+  bsfit_curve_init(&F);
+  memset(&ra, 0, sizeof ra);
+  ra.degree = x->q;
+  ra.tol = FOLLOW * x->tol;
+  ra.per_span = REPORT_SAMPLES;
+  ra.max_added = x->base->n / 4 + 8;
+  ra.bound_only = 1;
+  e = bsfit_filter_kernel_curve_delta(x->c, k->order, k->delta, &F, st);
+  if (e == BSFIT_OK) {
+    double eF;
+    bsfit__curve_shape(&F, x->samples, NULL, &eF);
+    if (!(k->energy > RIPPLE * eF)) { /* the projection did not ripple: nothing to follow */
+      bsfit_curve_free(&F);
+      return BSFIT_OK;
+    }
+  }
+  if (e == BSFIT_OK && target_breaks(x, &F, &b) != BSFIT_OK)
+    e = bsfit__fail(st, BSFIT_ENOMEM, "out of memory for break points");
+  else if (e == BSFIT_OK) {
+    e = bsfit__reduce_loop(&F, &ra, &b, x->al, &f.R, &rr, st);
+    bsfit__breaks_free(x->al, &b);
+  }
+  bsfit_curve_free(&F);
+  if (e == BSFIT_OK && rr.knots_added > 0) {
+    bsfit__bound bd;
+    f.order = k->order;
+    f.delta = k->delta;
+    f.dist = -1.0;
+    e = bsfit__curve_diff_bound(&f.R, x->c, x->tol, NULL, NULL, x->al, &bd, st);
+    f.bound = e == BSFIT_OK ? bd.bound : INFINITY;
+    if (e == BSFIT_OK && (f.bound <= x->tol || x->measured)) e = measure(x, &f, st);
+    if (e == BSFIT_OK && judged(x, &f) <= x->tol) {
+      bsfit__curve_shape(&f.R, x->samples, &f.turning, &f.energy);
+      if (f.energy < k->energy) {
+        cand_free(k);
+        *k = f;
+        return BSFIT_OK;
+      }
+    }
+  }
+  cand_free(&f);
+  return fatal(e) ? e : BSFIT_OK;
+}
+
 /* The winner, within tol by its certified bound or its measured distance, into res. */
 static bsfit_err finish(smooth_ctx *x, candidate *k, bsfit_curve *res, bsfit_smooth_report *rep,
                         bsfit_status *st) {
-  bsfit_err e = measure(x, k, st);
+  bsfit_err e = follow(x, k, st);
+  if (e == BSFIT_OK) e = measure(x, k, st);
   if (e != BSFIT_OK) return e;
   rep->max_deviation = k->dist;
   rep->changed = 1;
@@ -325,14 +389,19 @@ static bsfit_err finish(smooth_ctx *x, candidate *k, bsfit_curve *res, bsfit_smo
   return BSFIT_OK;
 }
 
-/* The best candidate over the orders to try, into best (order 0 when none is feasible). */
-static bsfit_err search(smooth_ctx *x, int order, candidate *best, bsfit_status *st) {
-  int r, r0 = order ? order : 1, r1 = order ? order : MAX_AUTO_ORDER;
+/* Each order's widest width (search_order); the least energy is kept in best, which may
+** already hold a candidate. */
+static bsfit_err over_orders(smooth_ctx *x, int r0, int r1, candidate *best, bsfit_status *st) {
   bsfit_err e = BSFIT_OK;
-  if (r1 > BSFIT_MAX_DEGREE - x->c->degree) r1 = BSFIT_MAX_DEGREE - x->c->degree;
+  int r;
+  x->last_order = 0;
   for (r = r0; r <= r1 && e == BSFIT_OK; r++) {
     candidate cur;
     cand_init(&cur);
+    if (best->order == r) { /* the measured pass goes on from the bound pass's width */
+      cur = *best;
+      cand_init(best);
+    }
     e = search_order(x, r, &cur, st);
     if (e == BSFIT_OK && cur.order == r && (best->order == 0 || cur.energy < best->energy)) {
       cand_free(best);
@@ -341,15 +410,22 @@ static bsfit_err search(smooth_ctx *x, int order, candidate *best, bsfit_status 
       cand_free(&cur);
     }
   }
+  return e;
+}
+
+/* The best candidate over the orders to try, into best (order 0 when none is feasible). */
+static bsfit_err search(smooth_ctx *x, int order, candidate *best, bsfit_status *st) {
+  int r0 = order ? order : 1, r1 = order ? order : MAX_AUTO_ORDER;
+  bsfit_err e;
+  if (r1 > BSFIT_MAX_DEGREE - x->c->degree) r1 = BSFIT_MAX_DEGREE - x->c->degree;
+  e = over_orders(x, r0, r1, best, st);
   if (e == BSFIT_OK && best->order != 0) e = measure(x, best, st);
   /* the bound counts motion along the curve too (tangential, at open ends, at corners):
-  ** where it is far above the distance, the winner's order is searched again by the
-  ** measured distance, from its width up */
+  ** where it is far above the distance, the orders are searched again by the measured
+  ** distance, each from its width of the first pass */
   if (e == BSFIT_OK && (best->order == 0 || best->dist < MEASURED_BELOW * x->tol)) {
     x->measured = 1;
-    r = best->order ? best->order : (order ? order : 2);
-    x->last_order = 0;
-    e = search_order(x, r, best, st);
+    e = over_orders(x, r0, r1, best, st);
   }
   return e;
 }
