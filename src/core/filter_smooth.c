@@ -54,6 +54,7 @@ typedef struct smooth_ctx {
 typedef struct candidate {
   int order;
   double delta, bound, dist, energy, turning; /* dist: measured, or -1 when not yet */
+  size_t added;                              /* knots added to follow the filtered curve */
   bsfit_curve R;
 } candidate;
 
@@ -356,6 +357,7 @@ static bsfit_err follow(smooth_ctx *x, candidate *k, bsfit_status *st) {
     f.order = k->order;
     f.delta = k->delta;
     f.dist = -1.0;
+    f.added = rr.knots_added;
     e = bsfit__curve_diff_bound(&f.R, x->c, x->tol, NULL, NULL, x->al, &bd, st);
     f.bound = e == BSFIT_OK ? bd.bound : INFINITY;
     if (e == BSFIT_OK && (f.bound <= x->tol || x->measured)) e = measure(x, &f, st);
@@ -380,6 +382,7 @@ static bsfit_err finish(smooth_ctx *x, candidate *k, bsfit_curve *res, bsfit_smo
   if (e != BSFIT_OK) return e;
   rep->max_deviation = k->dist;
   rep->changed = 1;
+  rep->knots_added += k->added;
   rep->order = k->order;
   rep->delta = k->delta;
   rep->bound = k->bound;
@@ -441,8 +444,8 @@ static bsfit_err run(smooth_ctx *x, int order, bsfit_curve *res, bsfit_smooth_re
   e = search(x, order, &best, st);
   if (e == BSFIT_OK) {
     if (best.order != 0 && best.energy < (1.0 - MIN_GAIN) * rep->energy_before) {
-      e = finish(x, &best, res, rep, st);
       rep->knots_added = added;
+      e = finish(x, &best, res, rep, st);
     } else {
       e = unchanged(x, res, rep, st);
       if (e == BSFIT_OK)
