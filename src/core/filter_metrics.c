@@ -61,18 +61,45 @@ static void add_vertex(measures *m, const double *e1, double l1, const double *e
   m->energy += theta * theta / (0.5 * (l1 + l2));
 }
 
+/* Evaluation at increasing parameters: the knot span is carried from one sample to the
+** next instead of searched (polynomial B-splines; others through the general evaluator). */
+typedef struct cursor {
+  const bsfit_curve *c;
+  size_t s;
+} cursor;
+
+static void cursor_eval(cursor *k, double t, double *out) {
+  const bsfit_curve *c = k->c;
+  double N[BSFIT_MAX_DEGREE + 1];
+  size_t p = (size_t)c->degree, d = (size_t)c->dim, j, q;
+  const double *P;
+  if (c->weights != NULL || c->bezier) {
+    bsfit__curve_eval_unchecked(c, t, out);
+    return;
+  }
+  while (k->s + 1 < c->n && t >= c->knots[k->s + 1]) k->s++;
+  bsfit_basis_funs(k->s, t, c->degree, c->knots, N);
+  P = c->ctrl + (k->s - p) * d;
+  for (q = 0; q < d; q++) out[q] = 0.0;
+  for (j = 0; j <= p; j++)
+    for (q = 0; q < d; q++) out[q] += N[j] * P[j * d + q];
+}
+
 static measures polygon_measures(const bsfit_curve *c, size_t samples) {
   double a, b, h, first[4], prev[4], cur[4], e[4], efirst[4], elast[4], lfirst = 0, llast = 0;
   size_t d = (size_t)c->dim, i, k, chords = c->periodic ? samples : samples - 1;
   measures m = {0.0, 0.0};
+  cursor at;
   bsfit_curve_domain(c, &a, &b);
+  at.c = c;
+  at.s = (size_t)c->degree;
   h = (b - a) / (double)(c->periodic ? samples : samples - 1);
-  bsfit__curve_eval_unchecked(c, a, first);
+  cursor_eval(&at, a, first);
   memcpy(prev, first, sizeof prev);
   for (i = 1; i <= chords; i++) {
     double len;
     if (i == samples) memcpy(cur, first, sizeof cur); /* closing chord */
-    else bsfit__curve_eval_unchecked(c, i + 1 == samples && !c->periodic ? b : a + (double)i * h, cur);
+    else cursor_eval(&at, i + 1 == samples && !c->periodic ? b : a + (double)i * h, cur);
     for (k = 0; k < d; k++) e[k] = cur[k] - prev[k];
     memcpy(prev, cur, sizeof prev);
     len = norm(e, d);

@@ -378,6 +378,11 @@ static void test_bad_input(void **state) {
   random_surface(&rng, 3, 3, 7, 6, 1, &s);
   expect_error(bsfit_filter_smooth_surface(&s, &so, &r, NULL, &st), BSFIT_EINVAL, &st);
   assert_non_null(strstr(st.msg, "closed"));
+  /* the exact kernel filter once took a closed surface as an open one (OK, and not closed
+  ** at the seam any more): refused like the box filter */
+  expect_error(bsfit_filter_kernel_surface_delta(&s, 2, 1, 0.1, 0.1, &r, &st), BSFIT_EINVAL,
+               &st);
+  assert_non_null(strstr(st.msg, "closed"));
   bsfit_surface_free(&s);
   bsfit_surface_free(&r);
 }
