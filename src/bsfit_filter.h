@@ -115,16 +115,16 @@ BSFIT_API bsfit_err bsfit_filter_box_curve_delta(const bsfit_curve *c, double de
 ** @param[out] out   receives the filtered surface (freed first; may be s itself). The
 **                   caller releases it with bsfit_surface_free.
 ** @return BSFIT_OK; BSFIT_EINVAL (s NULL or empty, rational, closed around u (periodic_u),
-**         k or l out of range, knots not uniform); BSFIT_EDEGREE; any code of bsfit_surface_validate;
-**         BSFIT_ENOMEM. On error out is unchanged. */
+**         k or l out of range, knots not uniform); BSFIT_EDEGREE; any code of
+**         bsfit_surface_validate; BSFIT_ENOMEM. On error out is unchanged. */
 BSFIT_API bsfit_err bsfit_filter_box_surface(const bsfit_surface *s, int k, int l,
                                              bsfit_surface *out, bsfit_status *st);
 
 /** Exact box filter over a 2 delta_u x 2 delta_v window of any polynomial surface
 ** (each direction as bsfit_filter_box_curve_delta on an open curve).
 ** @return BSFIT_OK; BSFIT_ENONFINITE; BSFIT_EINVAL (s NULL or empty, rational,
-**         periodic_u, a delta <= 0 or wider than the domain); BSFIT_EMULT; BSFIT_EDEGREE; any code of
-**         bsfit_surface_validate; BSFIT_ENOMEM. On error out is unchanged. */
+**         periodic_u, a delta <= 0 or wider than the domain); BSFIT_EMULT; BSFIT_EDEGREE;
+**         any code of bsfit_surface_validate; BSFIT_ENOMEM. On error out is unchanged. */
 BSFIT_API bsfit_err bsfit_filter_box_surface_delta(const bsfit_surface *s, double delta_u,
                                                    double delta_v, bsfit_surface *out,
                                                    bsfit_status *st);

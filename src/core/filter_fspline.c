@@ -90,3 +90,41 @@ bsfit_err bsfit__fspline_to_curve(bsfit__fspline *f, int dim, int periodic,
   bsfit_curve_move(&res, out);
   return BSFIT_OK;
 }
+
+bsfit_err bsfit__surface_along_v(const bsfit_surface *s, const bsfit__fspline *fu,
+                                 bsfit__vop op, const void *arg, int periodic_u,
+                                 const bsfit_allocator *a, bsfit_surface *out,
+                                 bsfit_status *st) {
+  size_t dim = (size_t)s->dim, nu2 = fu->n, bytes = fu->n * fu->d * sizeof(double);
+  bsfit__fview v;
+  bsfit__fspline fv;
+  bsfit_surface res;
+  double *tr = bsfit__alloc(a, bytes);
+  bsfit_err e;
+  if (tr == NULL) return bsfit__fail(st, BSFIT_ENOMEM, "out of memory for a transposed net");
+  bsfit__transpose_net(fu->P, nu2, s->nv, dim, tr);
+  v.p = s->degree_v;
+  v.n = s->nv;
+  v.d = nu2 * dim;
+  v.U = s->knots_v;
+  v.P = tr;
+  e = op(&v, arg, a, &fv, st);
+  bsfit__free(a, tr, bytes);
+  if (e != BSFIT_OK) return e;
+  bsfit_surface_init(&res);
+  e = bsfit_surface_alloc(&res, fu->p, fv.p, s->dim, nu2, fv.n, 0, a, st);
+  if (e == BSFIT_OK) {
+    res.periodic_u = periodic_u;
+    memcpy(res.knots_u, fu->U, (nu2 + (size_t)fu->p + 1) * sizeof(double));
+    memcpy(res.knots_v, fv.U, (fv.n + (size_t)fv.p + 1) * sizeof(double));
+    bsfit__transpose_net(fv.P, fv.n, nu2, dim, res.ctrl);
+    e = bsfit_surface_validate(&res, st);
+  }
+  bsfit__fspline_free(a, &fv);
+  if (e != BSFIT_OK) {
+    bsfit_surface_free(&res);
+    return e;
+  }
+  bsfit_surface_move(&res, out);
+  return BSFIT_OK;
+}

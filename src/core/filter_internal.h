@@ -35,6 +35,19 @@ bsfit__fview bsfit__fspline_view(const bsfit__fspline *f);
 bsfit__fview bsfit__surface_view_u(const bsfit_surface *s);
 /* dst[(j*rows + i)*dim + c] = src[(i*cols + j)*dim + c]: a net's rows become its columns. */
 void bsfit__transpose_net(const double *src, size_t rows, size_t cols, size_t dim, double *dst);
+
+/* A one-dimensional operation on a raw spline (a filter's passes, a projection). */
+typedef bsfit_err (*bsfit__vop)(const bsfit__fview *v, const void *arg, const bsfit_allocator *a,
+                                bsfit__fspline *out, bsfit_status *st);
+
+/* The second half of a tensor operation: fu holds s's net done along u (rows of nv*dim
+** values); op runs along v on its columns (the net transposed), and the surface of fu's u
+** knots and op's v knots, closed around u when periodic_u, is validated into out
+** (filter_fspline.c). */
+bsfit_err bsfit__surface_along_v(const bsfit_surface *s, const bsfit__fspline *fu,
+                                 bsfit__vop op, const void *arg, int periodic_u,
+                                 const bsfit_allocator *a, bsfit_surface *out,
+                                 bsfit_status *st);
 bsfit_err bsfit__fspline_alloc(const bsfit_allocator *a, bsfit__fspline *f, int p, size_t n,
                                size_t d, bsfit_status *st);
 

@@ -133,41 +133,10 @@ bsfit_err bsfit_filter_kernel_curve_delta(const bsfit_curve *c, int order, doubl
 ** a transposition, the v passes, and the transposition back.
 ** ===================================================================== */
 
-/* The v passes on the u-filtered spline fu, then the surface into out. */
-static bsfit_err surface_v(const bsfit_surface *s, const bsfit__fspline *fu,
-                           const bsfit__pass *av, const bsfit_allocator *a, bsfit_surface *out,
-                           bsfit_status *st) {
-  size_t dim = (size_t)s->dim, nu2 = fu->n, bytes = fu->n * fu->d * sizeof(double);
-  bsfit__fview v;
-  bsfit__fspline fv;
-  bsfit_surface res;
-  double *tr = bsfit__alloc(a, bytes);
-  bsfit_err e;
-  if (tr == NULL) return bsfit__fail(st, BSFIT_ENOMEM, "out of memory for a transposed net");
-  bsfit__transpose_net(fu->P, nu2, s->nv, dim, tr);
-  v.p = s->degree_v;
-  v.n = s->nv;
-  v.d = nu2 * dim;
-  v.U = s->knots_v;
-  v.P = tr;
-  e = passes(&v, av, 0, a, &fv, st);
-  bsfit__free(a, tr, bytes);
-  if (e != BSFIT_OK) return e;
-  bsfit_surface_init(&res);
-  e = bsfit_surface_alloc(&res, fu->p, fv.p, s->dim, nu2, fv.n, 0, a, st);
-  if (e == BSFIT_OK) {
-    memcpy(res.knots_u, fu->U, (nu2 + (size_t)fu->p + 1) * sizeof(double));
-    memcpy(res.knots_v, fv.U, (fv.n + (size_t)fv.p + 1) * sizeof(double));
-    bsfit__transpose_net(fv.P, fv.n, nu2, dim, res.ctrl);
-    e = bsfit_surface_validate(&res, st);
-  }
-  bsfit__fspline_free(a, &fv);
-  if (e != BSFIT_OK) {
-    bsfit_surface_free(&res);
-    return e;
-  }
-  bsfit_surface_move(&res, out);
-  return bsfit__ok(st);
+/* The passes along v (bsfit__vop). */
+static bsfit_err passes_v(const bsfit__fview *v, const void *arg, const bsfit_allocator *a,
+                          bsfit__fspline *out, bsfit_status *st) {
+  return passes(v, (const bsfit__pass *)arg, 0, a, out, st);
 }
 
 bsfit_err bsfit__filter_surface(const bsfit_surface *s, const bsfit__pass *au,
@@ -177,9 +146,9 @@ bsfit_err bsfit__filter_surface(const bsfit_surface *s, const bsfit__pass *au,
   bsfit__fspline fu;
   bsfit_err e = passes(&v, au, 0, &a, &fu, st);
   if (e != BSFIT_OK) return e;
-  e = surface_v(s, &fu, av, &a, out, st);
+  e = bsfit__surface_along_v(s, &fu, passes_v, av, 0, &a, out, st);
   bsfit__fspline_free(&a, &fu);
-  return e;
+  return e == BSFIT_OK ? bsfit__ok(st) : e;
 }
 
 static bsfit_err kernel_surface(const bsfit_surface *s, const bsfit__pass *au,

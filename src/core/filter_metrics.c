@@ -26,7 +26,8 @@ static bsfit_err check_measured(const bsfit_curve *c, size_t samples, const doub
   if (e != BSFIT_OK) return e;
   if (c->dim < 2)
     return bsfit__fail(st, BSFIT_EDIM, "turning needs a curve of dimension 2..4, got %d", c->dim);
-  if (samples < 3) return bsfit__fail(st, BSFIT_EINVAL, "need at least 3 samples, got %zu", samples);
+  if (samples < 3)
+    return bsfit__fail(st, BSFIT_EINVAL, "need at least 3 samples, got %zu", samples);
   return BSFIT_OK;
 }
 
@@ -156,7 +157,8 @@ bsfit_err bsfit_curve_max_deviation(const bsfit_curve *a, const bsfit_curve *b, 
   if (e != BSFIT_OK) return e;
   if (a->dim != b->dim)
     return bsfit__fail(st, BSFIT_EDIM, "curves of dimensions %d and %d", a->dim, b->dim);
-  if (samples < 2) return bsfit__fail(st, BSFIT_EINVAL, "need at least 2 samples, got %zu", samples);
+  if (samples < 2)
+    return bsfit__fail(st, BSFIT_EINVAL, "need at least 2 samples, got %zu", samples);
   bsfit_curve_domain(a, &a0, &a1);
   bsfit_curve_domain(b, &b0, &b1);
   lo = a0 > b0 ? a0 : b0;

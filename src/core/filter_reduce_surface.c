@@ -23,42 +23,16 @@
 ** The tensor projection
 ** ===================================================================== */
 
-/* Along v on the u-projected rows fu (nv columns of F), then the surface into out. */
-static bsfit_err project_v(const bsfit_surface *F, const bsfit__fspline *fu, int qv,
-                           const bsfit__breaks *bv, int periodic_u, const bsfit_allocator *al,
-                           bsfit_surface *out, bsfit_status *st) {
-  size_t dim = (size_t)F->dim, nu2 = fu->n, bytes = fu->n * fu->d * sizeof(double);
-  double *tr = bsfit__alloc(al, bytes);
-  bsfit__fview v;
-  bsfit__fspline fv;
-  bsfit_surface res;
-  bsfit_err e;
-  if (tr == NULL) return bsfit__fail(st, BSFIT_ENOMEM, "out of memory for a transposed net");
-  bsfit__transpose_net(fu->P, nu2, F->nv, dim, tr);
-  v.p = F->degree_v;
-  v.n = F->nv;
-  v.d = nu2 * dim;
-  v.U = F->knots_v;
-  v.P = tr;
-  e = bsfit__project(&v, NULL, 0, qv, bv, al, &fv, st);
-  bsfit__free(al, tr, bytes);
-  if (e != BSFIT_OK) return e;
-  bsfit_surface_init(&res);
-  e = bsfit_surface_alloc(&res, fu->p, qv, F->dim, nu2, fv.n, 0, al, st);
-  if (e == BSFIT_OK) {
-    res.periodic_u = periodic_u;
-    memcpy(res.knots_u, fu->U, (nu2 + (size_t)fu->p + 1) * sizeof(double));
-    memcpy(res.knots_v, fv.U, (fv.n + (size_t)qv + 1) * sizeof(double));
-    bsfit__transpose_net(fv.P, fv.n, nu2, dim, res.ctrl);
-    e = bsfit_surface_validate(&res, st);
-  }
-  bsfit__fspline_free(al, &fv);
-  if (e != BSFIT_OK) {
-    bsfit_surface_free(&res);
-    return e;
-  }
-  bsfit_surface_move(&res, out);
-  return BSFIT_OK;
+/* What the projection along v needs (bsfit__vop). */
+typedef struct vproj {
+  int q;
+  const bsfit__breaks *b;
+} vproj;
+
+static bsfit_err project_along_v(const bsfit__fview *v, const void *arg, const bsfit_allocator *a,
+                                 bsfit__fspline *out, bsfit_status *st) {
+  const vproj *w = arg;
+  return bsfit__project(v, NULL, 0, w->q, w->b, a, out, st);
 }
 
 bsfit_err bsfit__project_surface(const bsfit_surface *F, int qu, int qv, const bsfit__breaks *bu,
@@ -67,9 +41,12 @@ bsfit_err bsfit__project_surface(const bsfit_surface *F, int qu, int qv, const b
                                  bsfit_status *st) {
   bsfit__fview v = bsfit__surface_view_u(F);
   bsfit__fspline fu;
+  vproj w;
   bsfit_err e = bsfit__project(&v, NULL, periodic_u, qu, bu, al, &fu, st);
   if (e != BSFIT_OK) return e;
-  e = project_v(F, &fu, qv, bv, periodic_u, al, out, st);
+  w.q = qv;
+  w.b = bv;
+  e = bsfit__surface_along_v(F, &fu, project_along_v, &w, periodic_u, al, out, st);
   bsfit__fspline_free(al, &fu);
   return e;
 }
