@@ -245,8 +245,10 @@ typedef struct bsfit_reduce_report {
 ** L2 projection onto the splines of degree q on the break points, as smooth at each
 ** break as c is there (at most C^{q-1}), clamped (open c) or periodic (closed c). Exact
 ** Gauss-Legendre quadrature per span, banded Cholesky (closed: the periodic fitter's
-** cyclic elimination), O(n q^2). While the distance to c exceeds tol, a knot is added in
-** the middle of every span where it does and the projection repeated. A curve that
+** cyclic elimination), O(n q^2). The distance to c is first bounded (certified, O(n):
+** max_t |result(t) - c(t)| from the Bernstein coefficients of the difference per piece),
+** measured only where the bound misses tol; while it exceeds tol, a knot is added in the
+** middle of every span where it does and the projection repeated. A curve that
 ** already is of degree <= q on those break points is reproduced. Rational c: projected
 ** through more quadrature nodes than a polynomial needs (the integrand is not a
 ** polynomial), so the projection is approximate but the deviation reported is measured.
@@ -324,11 +326,15 @@ typedef struct bsfit_smooth_report {
 } bsfit_smooth_report;
 
 /** The smoothest curve of degree q within tol of c that kernel filtering gives: for each
-** order (given, or 1..4) the largest half-width whose filtered curve, projected on degree
-** q on c's break points, stays within tol; the order whose result has the least bending
-** energy wins; knots are added if the true distance needs them (docs/filtering.md).
-** Open results keep c's domain [a, b] (the filter's widened ends are not projected),
-** closed ones its period.
+** order (given, or 1..3) the widest half-width whose filtered curve, projected on degree q
+** on c's break points, has a certified distance bound (max_t |R(t) - c(t)| from the
+** Bernstein coefficients of the difference per piece) within tol; the order whose result
+** has the least bending energy wins, and its distance to c is measured. Where the bound
+** is far above that distance (motion along the curve: open ends, corners) the orders are
+** searched again by the measured distance (global closest points). A projection that
+** ripples is redone with knots added (docs/filtering.md). A result less than 1% smoother
+** than c is not taken. Open results keep c's domain [a, b] (the filter's widened ends are
+** not projected), closed ones its period.
 ** @param[in]  c    a valid polynomial curve of dimension 2..4.
 ** @param[out] out  the result (freed first; may be c itself).
 ** @param[out] rep  what was done, or NULL.

@@ -8,9 +8,10 @@
 ** quadrature on every span of the merged break points of S and C (the integrands are
 ** polynomials of degree 2q and q + p there); G is solved by banded Cholesky, or for
 ** a closed curve by the cyclic block elimination of the periodic fitter. Never dense.
-** Where the result is farther than tol from C (a true distance, filter_distance.c: the
-** cheap local measure first, the global one to confirm) a knot is inserted in the middle
-** of every offending span, and the projection repeated.
+** Where the result may be farther than tol from C (the certified bound of filter_bound.c
+** first, O(n); where it misses tol, the distance of filter_distance.c: the cheap local
+** measure, the global one to confirm) a knot is inserted in the middle of every offending
+** span, and the projection repeated.
 */
 #include "filter_internal.h"
 #include "fit_internal.h"
