@@ -115,16 +115,16 @@ BSFIT_API bsfit_err bsfit_filter_box_curve_delta(const bsfit_curve *c, double de
 ** @param[out] out   receives the filtered surface (freed first; may be s itself). The
 **                   caller releases it with bsfit_surface_free.
 ** @return BSFIT_OK; BSFIT_EINVAL (s NULL or empty, rational, closed around u (periodic_u),
-**         k or l out of range, knots not uniform); BSFIT_EDEGREE; any code of bsfit_surface_validate;
-**         BSFIT_ENOMEM. On error out is unchanged. */
+**         k or l out of range, knots not uniform); BSFIT_EDEGREE; any code of
+**         bsfit_surface_validate; BSFIT_ENOMEM. On error out is unchanged. */
 BSFIT_API bsfit_err bsfit_filter_box_surface(const bsfit_surface *s, int k, int l,
                                              bsfit_surface *out, bsfit_status *st);
 
 /** Exact box filter over a 2 delta_u x 2 delta_v window of any polynomial surface
 ** (each direction as bsfit_filter_box_curve_delta on an open curve).
 ** @return BSFIT_OK; BSFIT_ENONFINITE; BSFIT_EINVAL (s NULL or empty, rational,
-**         periodic_u, a delta <= 0 or wider than the domain); BSFIT_EMULT; BSFIT_EDEGREE; any code of
-**         bsfit_surface_validate; BSFIT_ENOMEM. On error out is unchanged. */
+**         periodic_u, a delta <= 0 or wider than the domain); BSFIT_EMULT; BSFIT_EDEGREE;
+**         any code of bsfit_surface_validate; BSFIT_ENOMEM. On error out is unchanged. */
 BSFIT_API bsfit_err bsfit_filter_box_surface_delta(const bsfit_surface *s, double delta_u,
                                                    double delta_v, bsfit_surface *out,
                                                    bsfit_status *st);
@@ -230,17 +230,25 @@ typedef struct bsfit_reduce_opts {
 } bsfit_reduce_opts;
 
 typedef struct bsfit_reduce_report {
-  double max_deviation; /**< distance between result and input (both ways, bsfit_curve_distance) */
+  double max_deviation; /**< distance between result and input: samples of each projected on
+                             the other (feet by Newton from the same parameter, the largest
+                             refined between samples; global closest points when the bound
+                             below does not already meet tol) */
   size_t knots_added;
   int rounds;           /**< projections computed */
+  double bound;         /**< certified upper bound of the distance, max_t |result(t) - c(t)|
+                             (Bernstein coefficients of the difference per span); INFINITY
+                             when the degrees pass 12 */
 } bsfit_reduce_report;
 
 /** The best approximation of c of degree q in least squares over the whole domain: the
 ** L2 projection onto the splines of degree q on the break points, as smooth at each
 ** break as c is there (at most C^{q-1}), clamped (open c) or periodic (closed c). Exact
 ** Gauss-Legendre quadrature per span, banded Cholesky (closed: the periodic fitter's
-** cyclic elimination), O(n q^2). While the distance to c exceeds tol, a knot is added in
-** the middle of every span where it does and the projection repeated. A curve that
+** cyclic elimination), O(n q^2). The distance to c is first bounded (certified, O(n):
+** max_t |result(t) - c(t)| from the Bernstein coefficients of the difference per piece),
+** measured only where the bound misses tol; while it exceeds tol, a knot is added in the
+** middle of every span where it does and the projection repeated. A curve that
 ** already is of degree <= q on those break points is reproduced. Rational c: projected
 ** through more quadrature nodes than a polynomial needs (the integrand is not a
 ** polynomial), so the projection is approximate but the deviation reported is measured.
@@ -254,6 +262,38 @@ typedef struct bsfit_reduce_report {
 BSFIT_API bsfit_err bsfit_filter_reduce_curve(const bsfit_curve *c, const bsfit_reduce_opts *o,
                                               bsfit_curve *out, bsfit_reduce_report *rep,
                                               bsfit_status *st);
+
+/** Options of bsfit_filter_reduce_surface. Zero-initialise, then set what you need. */
+typedef struct bsfit_reduce_surface_opts {
+  int degree_u, degree_v; /**< 1..12 each; 0 means 3 */
+  double tol;             /**< > 0; INFINITY: one projection on the surface's break points */
+  size_t max_added;       /**< knots that may be added (both directions); 0: 10 per break point
+                               + 100 */
+} bsfit_reduce_surface_opts;
+
+/** The best approximation of a polynomial surface by degrees (qu, qv) in least squares over
+** its whole domain: the tensor-product L2 projection on its own break points in each
+** direction, as smooth there as s is (at most C^{q-1}), clamped, or periodic in u when s is
+** closed around u (periodic_u). Computed as the curve projection of
+** bsfit_filter_reduce_curve along u on whole rows of the net, then along v (the tensor
+** Gram matrix is the Kronecker product of the two): banded solves only. The distance to s
+** is bounded (certified) by max |R(u,v) - s(u,v)| from the Bernstein coefficients of the
+** difference on every patch (a bound of the true distance, not the distance itself); while
+** it exceeds tol, a knot is added in the middle of every u span and every v span holding a
+** patch beyond tol, and the projection repeated. A surface that already is of degrees
+** <= (qu, qv) on those break points is reproduced.
+** @param[out] out  the result (freed first; may be s itself).
+** @param[out] rep  max_deviation and bound: the certified bound; knots_added: u and v
+**                  together; rounds. Or NULL.
+** @return BSFIT_OK; BSFIT_EDEGREE (a degree of the result or of s outside 1..12);
+**         BSFIT_ENONFINITE (tol NaN); BSFIT_EINVAL (NULL argument, rational s, tol <= 0);
+**         BSFIT_ETOOFEW; BSFIT_ENOCONV (tol not met within max_added knots); BSFIT_ENOTSPD;
+**         BSFIT_EINTR; BSFIT_ENOMEM; any code of bsfit_surface_validate. On error out is
+**         unchanged. */
+BSFIT_API bsfit_err bsfit_filter_reduce_surface(const bsfit_surface *s,
+                                                const bsfit_reduce_surface_opts *o,
+                                                bsfit_surface *out, bsfit_reduce_report *rep,
+                                                bsfit_status *st);
 
 /** Distance between two curves as point sets: samples (per_span per knot span of each
 ** curve, ends included) projected on the other curve by bsfit_curve_closest_many, the
@@ -280,14 +320,21 @@ typedef struct bsfit_smooth_report {
   double turning_before, turning_after; /**< bsfit_curve_total_turning */
   double energy_before, energy_after;   /**< bsfit_curve_bending_energy */
   int evaluations;      /**< filters tried by the search */
+  double bound;         /**< certified upper bound of the distance the result was checked
+                             against (<= tol when changed): curves, max_t |result(t) - c(t)|;
+                             surfaces, max |result(u,v) - s(u,v)| */
 } bsfit_smooth_report;
 
 /** The smoothest curve of degree q within tol of c that kernel filtering gives: for each
-** order (given, or 1..4) the largest half-width whose filtered curve, projected on degree
-** q on c's break points, stays within tol; the order whose result has the least bending
-** energy wins; knots are added if the true distance needs them (docs/filtering.md).
-** Open results keep c's domain [a, b] (the filter's widened ends are not projected),
-** closed ones its period.
+** order (given, or 1..3) the widest half-width whose filtered curve, projected on degree q
+** on c's break points, has a certified distance bound (max_t |R(t) - c(t)| from the
+** Bernstein coefficients of the difference per piece) within tol; the order whose result
+** has the least bending energy wins, and its distance to c is measured. Where the bound
+** is far above that distance (motion along the curve: open ends, corners) the orders are
+** searched again by the measured distance (global closest points). A projection that
+** ripples is redone with knots added (docs/filtering.md). A result less than 1% smoother
+** than c is not taken. Open results keep c's domain [a, b] (the filter's widened ends are
+** not projected), closed ones its period.
 ** @param[in]  c    a valid polynomial curve of dimension 2..4.
 ** @param[out] out  the result (freed first; may be c itself).
 ** @param[out] rep  what was done, or NULL.
@@ -303,15 +350,16 @@ BSFIT_API bsfit_err bsfit_filter_smooth_curve(const bsfit_curve *c, const bsfit_
 ** of each direction, the widest within tol; each result projected (L2, tensor product) on
 ** degree q in both directions on the surface's own break points; the order with the least
 ** thin-plate energy (the sampled integral of |S_uu|^2 + 2 |S_uv|^2 + |S_vv|^2 over the
-** parameter domain) wins. The distance is bounded by the largest difference at equal
-** parameters on a grid (4 samples per knot span each way; the input extended as constant
-** beyond its edges): an upper bound of the distance between the surfaces. No knots are
-** added. The result keeps the domain of s. Report: changed, order, delta (the u
-** half-width; along v it is in the same proportion to the v spacing), max_deviation
-** (the bound), energy_before/after (thin plate), evaluations; turning is 0. When nothing
-** smoother is within tol, out is a copy of s and changed is 0.
-** @return BSFIT_OK; BSFIT_EINVAL (NULL, rational, tol <= 0, order out of range);
-**         BSFIT_ENONFINITE (tol); BSFIT_EDEGREE; BSFIT_EINTR; BSFIT_ENOMEM. */
+** parameter domain) wins. The distance is a certified upper bound, max |R(u,v) - s(u,v)|
+** from the Bernstein coefficients of the difference on every patch (every point of either
+** surface lies that close to the other): not the distance itself, at least it. No knots
+** are added. The result keeps the domain of s. Report: changed, order, delta (the u
+** half-width; along v it is in the same proportion to the v spacing), max_deviation and
+** bound (the bound), energy_before/after (thin plate), evaluations; turning is 0. When
+** nothing smoother is within tol, out is a copy of s and changed is 0.
+** @return BSFIT_OK; BSFIT_EINVAL (NULL, rational, closed around u, tol <= 0, order out of
+**         range); BSFIT_ENONFINITE (tol); BSFIT_EDEGREE (degrees of s or q above 12);
+**         BSFIT_EINTR; BSFIT_ENOMEM. */
 BSFIT_API bsfit_err bsfit_filter_smooth_surface(const bsfit_surface *s,
                                                 const bsfit_smooth_opts *o, bsfit_surface *out,
                                                 bsfit_smooth_report *rep, bsfit_status *st);

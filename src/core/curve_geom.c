@@ -6,6 +6,7 @@
 ** from given starting parameters, and uniform sampling.
 */
 #include "curve_ops_internal.h"
+#include "quadrature.h"
 
 #include <math.h>
 #include <string.h>
@@ -20,30 +21,6 @@
 /* {====================================================================
 ** Arc length
 ** ===================================================================== */
-
-/* Nodes x and weights w of the n-point Gauss-Legendre rule on [-1, 1], by Newton's
-** method on the Legendre polynomial (computed per call: no static state). */
-static void gauss_legendre(int n, double *x, double *w) {
-  int i, j, it;
-  for (i = 0; i < (n + 1) / 2; i++) {
-    double z = cos(3.14159265358979323846 * ((double)i + 0.75) / ((double)n + 0.5)), dp = 1.0;
-    for (it = 0; it < 100; it++) {
-      double p0 = 1.0, p1 = z, dz;
-      for (j = 2; j <= n; j++) {
-        double p2 = ((2.0 * j - 1.0) * z * p1 - (j - 1.0) * p0) / (double)j;
-        p0 = p1;
-        p1 = p2;
-      }
-      dp = (double)n * (z * p1 - p0) / (z * z - 1.0);
-      dz = p1 / dp;
-      z -= dz;
-      if (fabs(dz) <= 1e-16) break;
-    }
-    x[i] = -z;
-    x[n - 1 - i] = z;
-    w[i] = w[n - 1 - i] = 2.0 / ((1.0 - z * z) * dp * dp);
-  }
-}
 
 typedef struct len_ctx {
   const bsfit_curve *c;
@@ -92,7 +69,7 @@ bsfit_err bsfit_curve_length(const bsfit_curve *c, double a, double b, double *l
     return bsfit__fail(st, BSFIT_EDOMAIN, "length interval [%g, %g] not an interval of [%g, %g]",
                        a, b, da, db);
   L.c = c;
-  gauss_legendre(GL_ORDER, L.x, L.w);
+  bsfit__gauss_legendre(GL_ORDER, L.x, L.w);
   for (s = (size_t)c->degree; s < c->n; s++) {
     double lo = fmax(a, c->knots[s]), hi = fmin(b, c->knots[s + 1]);
     if (!(lo < hi)) continue;

@@ -12,31 +12,8 @@
 #include <string.h>
 
 /* {====================================================================
-** Raw splines
+** Uniform knots
 ** ===================================================================== */
-
-void bsfit__fspline_free(const bsfit_allocator *a, bsfit__fspline *f) {
-  bsfit__free(a, f->U, (f->n + (size_t)f->p + 1) * sizeof(double));
-  bsfit__free(a, f->P, f->n * f->d * sizeof(double));
-  memset(f, 0, sizeof *f);
-}
-
-bsfit_err bsfit__fspline_alloc(const bsfit_allocator *a, bsfit__fspline *f, int p, size_t n,
-                               size_t d, bsfit_status *st) {
-  size_t np = bsfit__mulsize(n, d), bytes = bsfit__mulsize(np, sizeof(double));
-  memset(f, 0, sizeof *f);
-  if (bytes == 0) return bsfit__fail(st, BSFIT_EINVAL, "filtered spline of %zu x %zu too large", n, d);
-  f->U = bsfit__alloc(a, (n + (size_t)p + 1) * sizeof(double));
-  f->P = bsfit__alloc(a, bytes);
-  f->p = p;
-  f->n = n;
-  f->d = d;
-  if (f->U == NULL || f->P == NULL) {
-    bsfit__fspline_free(a, f);
-    return bsfit__fail(st, BSFIT_ENOMEM, "out of memory for a filtered spline of %zu points", n);
-  }
-  return BSFIT_OK;
-}
 
 int bsfit__knots_equal_spans(const double *U, size_t nk) {
   size_t i;
@@ -191,15 +168,6 @@ static bsfit_err check_curve(const bsfit_curve *c, bsfit_status *st) {
   return BSFIT_OK;
 }
 
-static bsfit__fview curve_view(const bsfit_curve *c) {
-  bsfit__fview v;
-  v.p = c->degree;
-  v.n = c->n;
-  v.d = (size_t)c->dim;
-  v.U = c->knots;
-  v.P = c->ctrl;
-  return v;
-}
 
 /* Hands f's arrays (allocated with *a) to a curve and moves it into out. The curve is
 ** validated first (O(n), like the filters: OK must mean a valid curve) and out (possibly
@@ -237,7 +205,7 @@ bsfit_err bsfit_filter_box_curve(const bsfit_curve *c, int k, bsfit_curve *out,
                        "knot spans are not all equal (clamped or non-uniform): use "
                        "bsfit_filter_box_curve_delta");
   a = c->alloc;
-  v = curve_view(c);
+  v = bsfit__curve_view(c);
   e = c->periodic ? bsfit__filter_ma_periodic(&v, k, &a, &f, st)
                   : bsfit__filter_ma_open(&v, k, &a, &f, st);
   if (e != BSFIT_OK) return e;
@@ -255,21 +223,25 @@ static bsfit_err check_delta(double delta, double length, const char *what, bsfi
   return BSFIT_OK;
 }
 
+bsfit_err bsfit__check_box_curve_delta(const bsfit_curve *c, double delta, bsfit_status *st) {
+  double lo, hi;
+  bsfit_err e = check_curve(c, st);
+  if (e != BSFIT_OK) return e;
+  bsfit_curve_domain(c, &lo, &hi);
+  return check_delta(delta, hi - lo, "delta", st);
+}
+
 bsfit_err bsfit_filter_box_curve_delta(const bsfit_curve *c, double delta, bsfit_curve *out,
                                        bsfit_status *st) {
   bsfit_allocator a;
   bsfit__fview v;
   bsfit__fspline f;
-  double lo, hi;
-  bsfit_err e = check_curve(c, st);
+  bsfit_err e = bsfit__check_box_curve_delta(c, delta, st);
   if (e != BSFIT_OK) return e;
   if (out == NULL) return bsfit__fail(st, BSFIT_EINVAL, "output curve is NULL");
-  bsfit_curve_domain(c, &lo, &hi);
-  e = check_delta(delta, hi - lo, "delta", st);
-  if (e != BSFIT_OK) return e;
   a = c->alloc;
-  v = curve_view(c);
-  e = c->periodic ? bsfit__filter_exact_periodic(&v, delta, &a, &f, st)
+  v = bsfit__curve_view(c);
+  e = c->periodic ? bsfit__filter_exact_periodic(&v, 1, delta, &a, &f, st)
                   : bsfit__filter_exact_open(&v, delta, &a, &f, st);
   if (e != BSFIT_OK) return e;
   return give_curve(&f, c->dim, c->periodic, &a, out, st);
@@ -281,26 +253,6 @@ bsfit_err bsfit_filter_box_curve_delta(const bsfit_curve *c, double delta, bsfit
 ** Surfaces: a surface is a curve along u whose points are rows of nv*dim values;
 ** filter along u, transpose, filter along v, transpose back.
 ** ===================================================================== */
-
-typedef struct filter_arg {
-  int exact;
-  int k;        /* moving average */
-  double delta; /* exact */
-} filter_arg;
-
-static bsfit_err filter_1d(const bsfit__fview *v, const filter_arg *arg,
-                           const bsfit_allocator *a, bsfit__fspline *f, bsfit_status *st) {
-  return arg->exact ? bsfit__filter_exact_open(v, arg->delta, a, f, st)
-                    : bsfit__filter_ma_open(v, arg->k, a, f, st);
-}
-
-/* dst[(j*rows + i)*dim + c] = src[(i*cols + j)*dim + c] */
-static void transpose(const double *src, size_t rows, size_t cols, size_t dim, double *dst) {
-  size_t i, j;
-  for (i = 0; i < rows; i++)
-    for (j = 0; j < cols; j++)
-      memcpy(dst + (j * rows + i) * dim, src + (i * cols + j) * dim, dim * sizeof(double));
-}
 
 static bsfit_err check_surface(const bsfit_surface *s, bsfit_status *st) {
   bsfit_err e;
@@ -318,93 +270,49 @@ static bsfit_err check_surface(const bsfit_surface *s, bsfit_status *st) {
   return BSFIT_OK;
 }
 
-/* Second pass (along v) on the transposed result of the first, then the surface. */
-static bsfit_err surface_pass_v(const bsfit_surface *s, const bsfit__fspline *fu,
-                                const filter_arg *av, const bsfit_allocator *a,
-                                bsfit_surface *out, bsfit_status *st) {
-  size_t dim = (size_t)s->dim, nu2 = fu->n, bytes = fu->n * fu->d * sizeof(double);
-  bsfit__fview v;
-  bsfit__fspline fv;
-  bsfit_surface res;
-  double *tr = bsfit__alloc(a, bytes);
-  bsfit_err e;
-  if (tr == NULL) return bsfit__fail(st, BSFIT_ENOMEM, "out of memory for a transposed net");
-  transpose(fu->P, nu2, s->nv, dim, tr);
-  v.p = s->degree_v;
-  v.n = s->nv;
-  v.d = nu2 * dim;
-  v.U = s->knots_v;
-  v.P = tr;
-  e = filter_1d(&v, av, a, &fv, st);
-  bsfit__free(a, tr, bytes);
-  if (e != BSFIT_OK) return e;
-  bsfit_surface_init(&res);
-  e = bsfit_surface_alloc(&res, fu->p, fv.p, s->dim, nu2, fv.n, 0, a, st);
-  if (e == BSFIT_OK) {
-    memcpy(res.knots_u, fu->U, (nu2 + (size_t)fu->p + 1) * sizeof(double));
-    memcpy(res.knots_v, fv.U, (fv.n + (size_t)fv.p + 1) * sizeof(double));
-    transpose(fv.P, fv.n, nu2, dim, res.ctrl);
-    e = bsfit_surface_validate(&res, st);
-  }
-  bsfit__fspline_free(a, &fv);
-  if (e != BSFIT_OK) {
-    bsfit_surface_free(&res);
-    return e;
-  }
-  bsfit_surface_move(&res, out);
-  return bsfit__ok(st);
-}
-
-static bsfit_err filter_surface(const bsfit_surface *s, const filter_arg *au,
-                                const filter_arg *av, bsfit_surface *out, bsfit_status *st) {
-  bsfit_allocator a = s->alloc;
-  bsfit__fview v;
-  bsfit__fspline fu;
-  bsfit_err e;
-  v.p = s->degree_u;
-  v.n = s->nu;
-  v.d = bsfit__mulsize(s->nv, (size_t)s->dim);
-  v.U = s->knots_u;
-  v.P = s->ctrl;
-  e = filter_1d(&v, au, &a, &fu, st);
-  if (e != BSFIT_OK) return e;
-  e = surface_pass_v(s, &fu, av, &a, out, st);
-  bsfit__fspline_free(&a, &fu);
-  return e;
-}
-
-bsfit_err bsfit_filter_box_surface(const bsfit_surface *s, int k, int l, bsfit_surface *out,
-                                   bsfit_status *st) {
-  filter_arg au = {0, k, 0.0}, av = {0, l, 0.0};
+bsfit_err bsfit__check_box_surface(const bsfit_surface *s, const bsfit__pass *au,
+                                   const bsfit__pass *av, bsfit_status *st) {
+  double ua, ub, va, vb;
   bsfit_err e = check_surface(s, st);
   if (e != BSFIT_OK) return e;
-  if (out == NULL) return bsfit__fail(st, BSFIT_EINVAL, "output surface is NULL");
-  if (k < 1 || (size_t)k > s->nu - (size_t)s->degree_u)
+  if (au->exact) {
+    bsfit_surface_domain(s, &ua, &ub, &va, &vb);
+    e = check_delta(au->delta, ub - ua, "delta_u", st);
+    return e == BSFIT_OK ? check_delta(av->delta, vb - va, "delta_v", st) : e;
+  }
+  if (au->k < 1 || (size_t)au->k > s->nu - (size_t)s->degree_u)
     return bsfit__fail(st, BSFIT_EINVAL, "window width k = %d out of range 1..%zu (spans in u)",
-                       k, s->nu - (size_t)s->degree_u);
-  if (l < 1 || (size_t)l > s->nv - (size_t)s->degree_v)
+                       au->k, s->nu - (size_t)s->degree_u);
+  if (av->k < 1 || (size_t)av->k > s->nv - (size_t)s->degree_v)
     return bsfit__fail(st, BSFIT_EINVAL, "window width l = %d out of range 1..%zu (spans in v)",
-                       l, s->nv - (size_t)s->degree_v);
+                       av->k, s->nv - (size_t)s->degree_v);
   if (!bsfit__knots_equal_spans(s->knots_u, s->nu + (size_t)s->degree_u + 1) ||
       !bsfit__knots_equal_spans(s->knots_v, s->nv + (size_t)s->degree_v + 1))
     return bsfit__fail(st, BSFIT_EINVAL,
                        "knot spans are not all equal in u and v: use "
                        "bsfit_filter_box_surface_delta");
-  return filter_surface(s, &au, &av, out, st);
+  return BSFIT_OK;
+}
+
+/* The public surface filters: checked, then one pass each way (filter_kernel.c). */
+static bsfit_err box_surface(const bsfit_surface *s, const bsfit__pass *au,
+                             const bsfit__pass *av, bsfit_surface *out, bsfit_status *st) {
+  bsfit_err e = bsfit__check_box_surface(s, au, av, st);
+  if (e != BSFIT_OK) return e;
+  if (out == NULL) return bsfit__fail(st, BSFIT_EINVAL, "output surface is NULL");
+  return bsfit__filter_surface(s, au, av, out, st);
+}
+
+bsfit_err bsfit_filter_box_surface(const bsfit_surface *s, int k, int l, bsfit_surface *out,
+                                   bsfit_status *st) {
+  bsfit__pass au = {0, k, 0.0, 1}, av = {0, l, 0.0, 1};
+  return box_surface(s, &au, &av, out, st);
 }
 
 bsfit_err bsfit_filter_box_surface_delta(const bsfit_surface *s, double delta_u, double delta_v,
                                          bsfit_surface *out, bsfit_status *st) {
-  filter_arg au = {1, 0, delta_u}, av = {1, 0, delta_v};
-  double ua, ub, va, vb;
-  bsfit_err e = check_surface(s, st);
-  if (e != BSFIT_OK) return e;
-  if (out == NULL) return bsfit__fail(st, BSFIT_EINVAL, "output surface is NULL");
-  bsfit_surface_domain(s, &ua, &ub, &va, &vb);
-  e = check_delta(delta_u, ub - ua, "delta_u", st);
-  if (e == BSFIT_OK) e = check_delta(delta_v, vb - va, "delta_v", st);
-  if (e != BSFIT_OK) return e;
-  return filter_surface(s, &au, &av, out, st);
+  bsfit__pass au = {1, 0, delta_u, 1}, av = {1, 0, delta_v, 1};
+  return box_surface(s, &au, &av, out, st);
 }
 
 /* }==================================================================== */

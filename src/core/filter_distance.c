@@ -19,9 +19,11 @@
 #include <string.h>
 
 #define LOCAL_ITERS 2   /* Newton steps of the local mode (the start is close already) */
-#define REFINE_ITERS 30 /* golden-section steps for the largest distance (global mode) */
+#define REFINE_ITERS 20 /* golden-section steps for the largest distance (1e-4 of 2 samples) */
 #define REFINE_MAX 16    /* local maxima refined, at most ... */
 #define REFINE_NEAR 0.5  /* ... among those within this fraction of the largest sample */
+#define FEET_ROUNDS 4    /* FEET mode: rounds of REFINE_MAX checked maxima, at most */
+#define FEET_SLACK 0.97  /* a sampled maximum this close to the largest checked is checked */
 
 /* Number of samples on the domain spans of c, per_span per span plus the end. */
 static size_t sample_count(const bsfit_curve *c, size_t per_span) {
@@ -47,8 +49,7 @@ static void sample(const bsfit_curve *c, size_t per_span, double *t, double *pts
   for (i = 0; i < m; i++) bsfit__curve_eval_unchecked(c, t[i], pts + i * d);
 }
 
-/* Index of the break span [x_i, x_{i+1}) of the (sorted) break points holding u. */
-static size_t break_span(const bsfit__breaks *br, double u) {
+size_t bsfit__break_span(const bsfit__breaks *br, double u) {
   size_t lo = 0, hi = br->n - 1;
   if (u <= br->x[0]) return 0;
   if (u >= br->x[br->n - 1]) return br->n - 2;
@@ -110,6 +111,56 @@ static double refine_max(const bsfit_curve *x, const bsfit_curve *y, const doubl
   return fmax(worst, fmax(f1, f2));
 }
 
+/* The (at most REFINE_MAX) largest local maxima of dist[0..m-1] at or above floor, into
+** top (insertion into a short sorted list: O(m REFINE_MAX) at worst, no allocation). */
+static int largest_maxima(const double *dist, size_t m, double floor, size_t *top) {
+  size_t i;
+  int n = 0, k;
+  for (i = 0; i < m; i++) {
+    if (dist[i] < floor || (i > 0 && dist[i - 1] > dist[i]) || (i + 1 < m && dist[i + 1] > dist[i]))
+      continue;
+    if (n == REFINE_MAX && dist[i] <= dist[top[n - 1]]) continue;
+    k = n < REFINE_MAX ? n++ : n - 1;
+    for (; k > 0 && dist[top[k - 1]] < dist[i]; k--) top[k] = top[k - 1];
+    top[k] = i;
+  }
+  return n;
+}
+
+/* The distance from x(ti) to y: the local foot's d, or the global closest point's if nearer. */
+static double checked_sample(const bsfit_curve *x, const bsfit_curve *y, double ti, double d,
+                             const bsfit_allocator *al) {
+  double P[4], ug, dg;
+  bsfit__curve_eval_unchecked(x, ti, P);
+  if (bsfit_curve_closest(y, P, &ug, &dg, al, NULL) == BSFIT_OK && dg < d) return dg;
+  return d;
+}
+
+/* FEET mode: the local feet only bound each sample's distance from above (near a corner
+** the foot from the same parameter can stop on the wrong side), so the sampled maxima are
+** refined and checked by a global closest point, largest first, until the next one's
+** sampled value cannot reach what the checked ones give (FEET_SLACK: the rise between
+** samples). dist is consumed. */
+static void feet_maxima(const bsfit_curve *x, const bsfit_curve *y, const double *t,
+                        const double *u, double *dist, size_t m, const bsfit_allocator *al,
+                        double *worst) {
+  size_t top[REFINE_MAX];
+  double found = 0.0;
+  int round, k, n = 0;
+  for (round = 0; round < FEET_ROUNDS; round++) {
+    n = largest_maxima(dist, m, FEET_SLACK * found, top);
+    for (k = 0; k < n && dist[top[k]] >= FEET_SLACK * found; k++) {
+      found = fmax(found, checked_sample(x, y, t[top[k]], dist[top[k]], al));
+      found = refine_max(x, y, t, u, m, top[k], found, 1, al);
+    }
+    if (k < n || n < REFINE_MAX) break;
+    for (k = 0; k < n; k++) dist[top[k]] = -1.0;
+  }
+  if (round == FEET_ROUNDS) /* what is left unchecked still bounds from above */
+    for (k = 0; (size_t)k < m; k++) found = fmax(found, dist[k]);
+  *worst = fmax(*worst, found);
+}
+
 /* One direction: samples of x projected onto y. Where `on_y` the span attribution uses
 ** the feet on y, else the samples' parameters on x. */
 static bsfit_err one_way(const bsfit_curve *x, const bsfit_curve *y, size_t per_span,
@@ -128,30 +179,26 @@ static bsfit_err one_way(const bsfit_curve *x, const bsfit_curve *y, size_t per_
   sample(x, per_span, t, pts);
   memcpy(u, t, m * sizeof(double));
   e = bsfit_curve_project_many(y, pts, m, u, dist, LOCAL_ITERS, al, st);
-  if (e == BSFIT_OK && mode != BSFIT__DIST_LOCAL) {
+  if (e == BSFIT_OK && (mode == BSFIT__DIST_CORRESPONDING || mode == BSFIT__DIST_VERIFIED)) {
     e = bsfit_curve_closest_many(y, pts, m, ug, dg, al, st);
     for (i = 0; e == BSFIT_OK && i < m; i++)
       if (dg[i] < dist[i]) dist[i] = dg[i], u[i] = ug[i];
   }
   for (i = 0; e == BSFIT_OK && i < m; i++) {
     if (dist[i] > dist[imax]) imax = i;
-    if (dist[i] > *worst) *worst = dist[i];
+    if (dist[i] > *worst && mode != BSFIT__DIST_FEET) *worst = dist[i];
     if (span_max != NULL) {
-      size_t s = break_span(br, on_y ? u[i] : t[i]);
+      size_t s = bsfit__break_span(br, on_y ? u[i] : t[i]);
       if (dist[i] > span_max[s]) span_max[s] = dist[i];
     }
   }
-  if (e == BSFIT_OK && mode != BSFIT__DIST_LOCAL) {
-    /* the local maxima of the sampled distance near the largest one */
-    double top = dist[imax];
-    int done = 0;
-    for (i = 0; i < m && done < REFINE_MAX; i++) {
-      if (dist[i] < REFINE_NEAR * top || (i > 0 && dist[i - 1] > dist[i]) ||
-          (i + 1 < m && dist[i + 1] > dist[i]))
-        continue;
-      *worst = refine_max(x, y, t, u, m, i, *worst, mode == BSFIT__DIST_VERIFIED, al);
-      done++;
-    }
+  if (e == BSFIT_OK && mode == BSFIT__DIST_FEET) {
+    feet_maxima(x, y, t, u, dist, m, al, worst);
+  } else if (e == BSFIT_OK && mode != BSFIT__DIST_LOCAL) {
+    size_t top[REFINE_MAX];
+    int k, n = largest_maxima(dist, m, REFINE_NEAR * dist[imax], top);
+    for (k = 0; k < n; k++)
+      *worst = refine_max(x, y, t, u, m, top[k], *worst, mode == BSFIT__DIST_VERIFIED, al);
   }
   bsfit__free(al, t, bytes);
   return e;

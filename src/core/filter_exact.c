@@ -311,12 +311,24 @@ static double periodic_knot(const bsfit__fview *in, size_t N, long j) {
   return in->U[p + (size_t)m] + (double)fl * T;
 }
 
-/* The periodic curve as an open one over 2 M + 1 periods; M leaves room for the
-** filter's end effects and for the q knots read on each side of the kept period. */
-static bsfit_err unwrap(const bsfit__fview *in, size_t N, size_t M, scratch *s,
+/* How many knot spans the periodic curve is unwrapped by on each side: enough for the
+** kernel's reach `reach` (order * delta: the open filter differs from the periodic one only
+** that near the ends of what it is given), plus p + 2 spans for the end rule's ramp.
+** Walking the periodic knots from the period's start costs O(margin). */
+static size_t margin_spans(const bsfit__fview *in, size_t N, double reach) {
+  double lo = in->U[in->p], hi = in->U[in->p + N];
+  size_t k = 0, K = 0;
+  long j;
+  for (j = 0; lo - periodic_knot(in, N, j) <= reach; j--) k++;
+  for (j = (long)N; periodic_knot(in, N, j) - hi <= reach; j++) K++;
+  return (k > K ? k : K) + (size_t)in->p + 2;
+}
+
+/* The periodic curve as an open one, K knot spans added before and after its period. */
+static bsfit_err unwrap(const bsfit__fview *in, size_t N, size_t K, scratch *s,
                         bsfit__fview *open) {
-  size_t p = (size_t)in->p, d = in->d, n = N + p + 2 * M * N, i;
-  long i0 = -(long)(M * N);
+  size_t p = (size_t)in->p, d = in->d, n = N + p + 2 * K, i;
+  long i0 = -(long)K;
   double *U = scratch_get(s, n + p + 1, 1), *P = scratch_get(s, n, d);
   if (U == NULL || P == NULL) return BSFIT_ENOMEM;
   for (i = 0; i < n + p + 1; i++) {
@@ -379,10 +391,36 @@ static int unwrapped_ok(const bsfit__fview *open) {
   return 1;
 }
 
-bsfit_err bsfit__filter_exact_periodic(const bsfit__fview *in, double delta,
+/* `order` exact passes on the open spline in, each pass's input freed once read. */
+static bsfit_err open_passes(const bsfit__fview *in, int order, double delta,
+                             const bsfit_allocator *a, bsfit__fspline *out, bsfit_status *st) {
+  bsfit__fspline cur, next;
+  bsfit__fview v;
+  bsfit_err e = bsfit__filter_exact_open(in, delta, a, &cur, st);
+  int i;
+  for (i = 1; i < order && e == BSFIT_OK; i++) {
+    if (bsfit__interrupted(a)) {
+      bsfit__fspline_free(a, &cur);
+      return bsfit__fail(st, BSFIT_EINTR, "kernel filter interrupted after %d of %d passes", i,
+                         order);
+    }
+    v.p = cur.p;
+    v.n = cur.n;
+    v.d = cur.d;
+    v.U = cur.U;
+    v.P = cur.P;
+    e = bsfit__filter_exact_open(&v, delta, a, &next, st);
+    bsfit__fspline_free(a, &cur);
+    cur = next;
+  }
+  if (e == BSFIT_OK) *out = cur;
+  return e;
+}
+
+bsfit_err bsfit__filter_exact_periodic(const bsfit__fview *in, int order, double delta,
                                        const bsfit_allocator *a, bsfit__fspline *out,
                                        bsfit_status *st) {
-  size_t p = (size_t)in->p, N = in->n - p, M = 3 + (p + 1) / N;
+  size_t p = (size_t)in->p, N = in->n - p, K;
   double lo = in->U[p], T = in->U[p + N] - lo, tol;
   bsfit__fview open;
   bsfit__fspline f;
@@ -390,7 +428,8 @@ bsfit_err bsfit__filter_exact_periodic(const bsfit__fview *in, double delta,
   bsfit_err e;
   memset(&s, 0, sizeof s);
   s.a = a;
-  if (unwrap(in, N, M, &s, &open) != BSFIT_OK) {
+  K = margin_spans(in, N, (double)order * delta);
+  if (unwrap(in, N, K, &s, &open) != BSFIT_OK) {
     scratch_release(&s);
     return bsfit__fail(st, BSFIT_ENOMEM, "out of memory unwrapping a closed curve");
   }
@@ -399,11 +438,11 @@ bsfit_err bsfit__filter_exact_periodic(const bsfit__fview *in, double delta,
     return bsfit__fail(st, BSFIT_EMULT,
                        "knots of this closed curve are closer than the rounding of its "
                        "periods shifted by up to %g: they would merge",
-                       (double)M * T);
+                       open.U[open.n + p] - open.U[0]);
   }
-  e = bsfit__filter_exact_open(&open, delta, a, &f, st);
+  e = open_passes(&open, order, delta, a, &f, st);
   if (e == BSFIT_OK) {
-    tol = 64.0 * DBL_EPSILON * (fabs(lo) + (double)(2 * M + 2) * T);
+    tol = 64.0 * DBL_EPSILON * (fabs(lo) + 2.0 * (open.U[open.n + p] - open.U[0]));
     e = read_period(&f, lo, T, tol, a, &s, out, st);
     bsfit__fspline_free(a, &f);
   }

@@ -26,7 +26,8 @@ static bsfit_err check_measured(const bsfit_curve *c, size_t samples, const doub
   if (e != BSFIT_OK) return e;
   if (c->dim < 2)
     return bsfit__fail(st, BSFIT_EDIM, "turning needs a curve of dimension 2..4, got %d", c->dim);
-  if (samples < 3) return bsfit__fail(st, BSFIT_EINVAL, "need at least 3 samples, got %zu", samples);
+  if (samples < 3)
+    return bsfit__fail(st, BSFIT_EINVAL, "need at least 3 samples, got %zu", samples);
   return BSFIT_OK;
 }
 
@@ -61,18 +62,45 @@ static void add_vertex(measures *m, const double *e1, double l1, const double *e
   m->energy += theta * theta / (0.5 * (l1 + l2));
 }
 
+/* Evaluation at increasing parameters: the knot span is carried from one sample to the
+** next instead of searched (polynomial B-splines; others through the general evaluator). */
+typedef struct cursor {
+  const bsfit_curve *c;
+  size_t s;
+} cursor;
+
+static void cursor_eval(cursor *k, double t, double *out) {
+  const bsfit_curve *c = k->c;
+  double N[BSFIT_MAX_DEGREE + 1];
+  size_t p = (size_t)c->degree, d = (size_t)c->dim, j, q;
+  const double *P;
+  if (c->weights != NULL || c->bezier) {
+    bsfit__curve_eval_unchecked(c, t, out);
+    return;
+  }
+  while (k->s + 1 < c->n && t >= c->knots[k->s + 1]) k->s++;
+  bsfit_basis_funs(k->s, t, c->degree, c->knots, N);
+  P = c->ctrl + (k->s - p) * d;
+  for (q = 0; q < d; q++) out[q] = 0.0;
+  for (j = 0; j <= p; j++)
+    for (q = 0; q < d; q++) out[q] += N[j] * P[j * d + q];
+}
+
 static measures polygon_measures(const bsfit_curve *c, size_t samples) {
   double a, b, h, first[4], prev[4], cur[4], e[4], efirst[4], elast[4], lfirst = 0, llast = 0;
   size_t d = (size_t)c->dim, i, k, chords = c->periodic ? samples : samples - 1;
   measures m = {0.0, 0.0};
+  cursor at;
   bsfit_curve_domain(c, &a, &b);
+  at.c = c;
+  at.s = (size_t)c->degree;
   h = (b - a) / (double)(c->periodic ? samples : samples - 1);
-  bsfit__curve_eval_unchecked(c, a, first);
+  cursor_eval(&at, a, first);
   memcpy(prev, first, sizeof prev);
   for (i = 1; i <= chords; i++) {
     double len;
     if (i == samples) memcpy(cur, first, sizeof cur); /* closing chord */
-    else bsfit__curve_eval_unchecked(c, i + 1 == samples && !c->periodic ? b : a + (double)i * h, cur);
+    else cursor_eval(&at, i + 1 == samples && !c->periodic ? b : a + (double)i * h, cur);
     for (k = 0; k < d; k++) e[k] = cur[k] - prev[k];
     memcpy(prev, cur, sizeof prev);
     len = norm(e, d);
@@ -87,6 +115,12 @@ static measures polygon_measures(const bsfit_curve *c, size_t samples) {
   }
   if (c->periodic && lfirst > 0) add_vertex(&m, elast, llast, efirst, lfirst, d);
   return m;
+}
+
+void bsfit__curve_shape(const bsfit_curve *c, size_t samples, double *turning, double *energy) {
+  measures m = polygon_measures(c, samples);
+  if (turning != NULL) *turning = m.turning;
+  if (energy != NULL) *energy = m.energy;
 }
 
 bsfit_err bsfit_curve_total_turning(const bsfit_curve *c, size_t samples, double *out,
@@ -123,7 +157,8 @@ bsfit_err bsfit_curve_max_deviation(const bsfit_curve *a, const bsfit_curve *b, 
   if (e != BSFIT_OK) return e;
   if (a->dim != b->dim)
     return bsfit__fail(st, BSFIT_EDIM, "curves of dimensions %d and %d", a->dim, b->dim);
-  if (samples < 2) return bsfit__fail(st, BSFIT_EINVAL, "need at least 2 samples, got %zu", samples);
+  if (samples < 2)
+    return bsfit__fail(st, BSFIT_EINVAL, "need at least 2 samples, got %zu", samples);
   bsfit_curve_domain(a, &a0, &a1);
   bsfit_curve_domain(b, &b0, &b1);
   lo = a0 > b0 ? a0 : b0;

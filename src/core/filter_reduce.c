@@ -8,12 +8,14 @@
 ** quadrature on every span of the merged break points of S and C (the integrands are
 ** polynomials of degree 2q and q + p there); G is solved by banded Cholesky, or for
 ** a closed curve by the cyclic block elimination of the periodic fitter. Never dense.
-** Where the result is farther than tol from C (a true distance, filter_distance.c: the
-** cheap local measure first, the global one to confirm) a knot is inserted in the middle
-** of every offending span, and the projection repeated.
+** Where the result may be farther than tol from C (the certified bound of filter_bound.c
+** first, O(n); where it misses tol, the distance of filter_distance.c: the cheap local
+** measure, the global one to confirm) a knot is inserted in the middle of every offending
+** span, and the projection repeated.
 */
 #include "filter_internal.h"
 #include "fit_internal.h"
+#include "quadrature.h"
 
 #include <float.h>
 #include <math.h>
@@ -59,21 +61,18 @@ bsfit_err bsfit__breaks_reserve(const bsfit_allocator *a, bsfit__breaks *b, size
   return BSFIT_OK;
 }
 
-/* The multiplicity q needs at x to be as smooth as c there (at most C^{q-1}): c has
-** continuity p - m at a knot of multiplicity m, and C^p elsewhere. */
-static int target_mult(const bsfit_curve *c, int q, double x) {
-  int m = bsfit_knots_multiplicity(c->knots, c->n + (size_t)c->degree + 1, x);
-  int k = c->degree - m, t = k >= q ? 1 : q - k;
+/* The multiplicity q needs at x to be as smooth as the spline of degree p on the nk knots
+** U there (at most C^{q-1}): continuity p - m at a knot of multiplicity m, C^p elsewhere. */
+static int target_mult(const double *U, size_t nk, int p, int q, double x) {
+  int m = bsfit_knots_multiplicity(U, nk, x);
+  int k = p - m, t = k >= q ? 1 : q - k;
   return t < 1 ? 1 : (t > q ? q : t);
 }
 
-/* Break points: xs (strictly increasing, xs[0] = a, xs[nx-1] = b) or, when xs is NULL,
-** the distinct knots of c in its domain [a, b]. */
-static bsfit_err make_breaks(const bsfit_curve *c, int q, const double *xs, size_t nx,
-                             const bsfit_allocator *al, bsfit__breaks *b, bsfit_status *st) {
-  size_t nk = c->n + (size_t)c->degree + 1, i;
-  double a, e;
-  bsfit_curve_domain(c, &a, &e);
+bsfit_err bsfit__knot_breaks(const double *U, size_t nk, int p, double a, double e, int q,
+                             const double *xs, size_t nx, const bsfit_allocator *al,
+                             bsfit__breaks *b, bsfit_status *st) {
+  size_t i;
   memset(b, 0, sizeof *b);
   if (bsfit__breaks_reserve(al, b, (xs ? nx : nk) + 2) != BSFIT_OK)
     return bsfit__fail(st, BSFIT_ENOMEM, "out of memory for %zu break points", nk);
@@ -83,11 +82,26 @@ static bsfit_err make_breaks(const bsfit_curve *c, int q, const double *xs, size
   } else {
     b->x[b->n++] = a;
     for (i = 0; i < nk; i++)
-      if (c->knots[i] > b->x[b->n - 1] && c->knots[i] < e) b->x[b->n++] = c->knots[i];
+      if (U[i] > b->x[b->n - 1] && U[i] < e) b->x[b->n++] = U[i];
     b->x[b->n++] = e;
   }
-  for (i = 0; i < b->n; i++) b->mult[i] = target_mult(c, q, b->x[i]);
+  for (i = 0; i < b->n; i++) b->mult[i] = target_mult(U, nk, p, q, b->x[i]);
   return BSFIT_OK;
+}
+
+/* Break points: xs (strictly increasing, xs[0] = a, xs[nx-1] = b) or, when xs is NULL,
+** the distinct knots of c in its domain [a, b]. */
+static bsfit_err make_breaks(const bsfit_curve *c, int q, const double *xs, size_t nx,
+                             const bsfit_allocator *al, bsfit__breaks *b, bsfit_status *st) {
+  double a, e;
+  bsfit_curve_domain(c, &a, &e);
+  return bsfit__knot_breaks(c->knots, c->n + (size_t)c->degree + 1, c->degree, a, e, q, xs, nx,
+                            al, b, st);
+}
+
+bsfit_err bsfit__curve_breaks(const bsfit_curve *c, int q, const bsfit_allocator *al,
+                              bsfit__breaks *b, bsfit_status *st) {
+  return make_breaks(c, q, NULL, 0, al, b, st);
 }
 
 /* Inserts x (mult 1) after index i. */
@@ -141,30 +155,6 @@ static size_t target_knot_room(const bsfit__breaks *b, int q) {
 ** The projection
 ** ===================================================================== */
 
-/* Nodes x and weights w of the n-point Gauss-Legendre rule on [-1, 1] (Newton's method
-** on the Legendre polynomial P_n from Chebyshev-like starting points). */
-static void gauss_legendre(int n, double *x, double *w) {
-  int i, j, it;
-  for (i = 0; i < (n + 1) / 2; i++) {
-    double z = cos(3.14159265358979323846 * ((double)i + 0.75) / ((double)n + 0.5)), dp = 1.0;
-    for (it = 0; it < 100; it++) {
-      double p0 = 1.0, p1 = z, dz;
-      for (j = 2; j <= n; j++) {
-        double p2 = ((2.0 * j - 1.0) * z * p1 - (j - 1.0) * p0) / (double)j;
-        p0 = p1;
-        p1 = p2;
-      }
-      dp = (double)n * (z * p1 - p0) / (z * z - 1.0);
-      dz = p1 / dp;
-      z -= dz;
-      if (fabs(dz) <= 1e-16) break;
-    }
-    x[i] = -z;
-    x[n - 1 - i] = z;
-    w[i] = w[n - 1 - i] = 2.0 / ((1.0 - z * z) * dp * dp);
-  }
-}
-
 /* Everything one assembly needs. */
 typedef struct proj {
   const bsfit__fview *in;
@@ -194,12 +184,17 @@ static void eval_input(const proj *P, size_t s, double t) {
   }
 }
 
-/* Adds the quadrature of [x0, x1] (inside one span of each spline) to band and rhs. */
-static void add_span(proj *P, double x0, double x1) {
-  size_t q = (size_t)P->q, d = P->in->d, i, j, k, g;
+static size_t clampz(size_t v, size_t lo, size_t hi) { return v < lo ? lo : (v > hi ? hi : v); }
+
+/* Adds the quadrature of [x0, x1] to band and rhs: inside the target's span st and the
+** input's span sc (the knot indices the merge in assemble has reached, clamped as
+** bsfit_knots_find_span would). */
+static void add_span(proj *P, double x0, double x1, size_t st, size_t sc) {
+  size_t q = (size_t)P->q, d = P->in->d, i, j, k, g, base;
   double mid = 0.5 * (x0 + x1), half = 0.5 * (x1 - x0), Nt[BSFIT_MAX_DEGREE + 1];
-  size_t st = bsfit_knots_find_span(P->T, P->nraw, P->q, mid);
-  size_t sc = bsfit_knots_find_span(P->in->U, P->in->n, P->in->p, mid), base = st - q;
+  st = clampz(st, q, P->nraw - 1);
+  sc = clampz(sc, (size_t)P->in->p, P->in->n - 1);
+  base = st - q;
   for (g = 0; g < (size_t)P->ng; g++) {
     double t = mid + half * P->gx[g], w = half * P->gw[g];
     bsfit_basis_funs(st, t, P->q, P->T, Nt);
@@ -225,7 +220,7 @@ static bsfit_err assemble(proj *P, double a, double b, const bsfit_allocator *al
     while (j < P->nt && T[j] <= x) j++;
     if (i < nu && U[i] < next) next = U[i];
     if (j < P->nt && T[j] < next) next = T[j];
-    add_span(P, x, next);
+    add_span(P, x, next, j > 0 ? j - 1 : 0, i > 0 ? i - 1 : 0);
     x = next;
     if ((++spans & 4095) == 0 && bsfit__interrupted(al))
       return bsfit__fail(st, BSFIT_EINTR, "degree reduction interrupted");
@@ -238,8 +233,10 @@ static bsfit_err assemble(proj *P, double a, double b, const bsfit_allocator *al
 ** holds only the arrays that solver reads. */
 static bsfit_err solve_periodic(proj *P, const bsfit_allocator *al, double *ctrl,
                                 bsfit_status *st) {
-  size_t q = (size_t)P->q, nraw = P->nraw, N = nraw - q, n1 = N - q;
-  size_t sizes[6] = {(q + 1) * n1, n1 * q, n1 * q, q * q, N * 4, 3 * nraw}, total = 0, i;
+  size_t q = (size_t)P->q, nraw = P->nraw, N = nraw - q, n1 = N - q, d = P->in->d;
+  /* r2 holds N points of d values, work q of them (d is a whole row of a surface's net) */
+  size_t sizes[6] = {(q + 1) * n1, n1 * q, n1 * q, q * q, N * d, 3 * nraw + q * d};
+  size_t total = 0, i;
   bsfit_fitter f;
   double *blk;
   bsfit_err e;
@@ -307,7 +304,7 @@ bsfit_err bsfit__project(const bsfit__fview *in, const bsfit_curve *rational, in
   P.nraw = nraw;
   P.nt = nraw + (size_t)q + 1;
   P.T = T;
-  gauss_legendre(P.ng, P.gx, P.gw);
+  bsfit__gauss_legendre(P.ng, P.gx, P.gw);
   bb = bsfit__mulsize(nraw, (size_t)q + 1) * sizeof(double);
   rb = bsfit__mulsize(nraw, d) * sizeof(double);
   P.band = bsfit__alloc(al, bb);
@@ -340,28 +337,6 @@ bsfit_err bsfit__project(const bsfit__fview *in, const bsfit_curve *rational, in
 ** Knots added until the tolerance is met
 ** ===================================================================== */
 
-bsfit_err bsfit__fspline_to_curve(bsfit__fspline *f, int dim, int periodic,
-                                  const bsfit_allocator *a, bsfit_curve *out, bsfit_status *st) {
-  bsfit_curve res;
-  bsfit_err e;
-  bsfit_curve_init(&res);
-  res.degree = f->p;
-  res.dim = dim;
-  res.n = f->n;
-  res.knots = f->U;
-  res.ctrl = f->P;
-  res.periodic = periodic;
-  res.alloc = *a;
-  memset(f, 0, sizeof *f);
-  e = bsfit_curve_validate(&res, st);
-  if (e != BSFIT_OK) {
-    bsfit_curve_free(&res);
-    return e;
-  }
-  bsfit_curve_move(&res, out);
-  return BSFIT_OK;
-}
-
 /* One projection of c onto the break points b, into res. */
 static bsfit_err project_curve(const bsfit_curve *c, int q, const bsfit__breaks *b,
                                const bsfit_allocator *al, bsfit_curve *res, bsfit_status *st) {
@@ -382,8 +357,8 @@ static bsfit_err project_curve(const bsfit_curve *c, int q, const bsfit__breaks 
 ** span down, so the indices still to visit do not move), unless the span is already
 ** narrower than MIN_SPAN of the domain: a deviation that refining does not cure there is
 ** the input's own (a corner, a spike), not the projection's. Returns the number added. */
-static bsfit_err split_spans(bsfit__breaks *b, const double *span_max, double tol,
-                             const bsfit_allocator *al, size_t *count) {
+bsfit_err bsfit__split_spans(bsfit__breaks *b, const double *span_max, double tol,
+                            const bsfit_allocator *al, size_t *count) {
   size_t i = b->n - 1;
   double w = MIN_SPAN * (b->x[b->n - 1] - b->x[0]);
   *count = 0;
@@ -393,6 +368,36 @@ static bsfit_err split_spans(bsfit__breaks *b, const double *span_max, double to
     (*count)++;
   }
   return BSFIT_OK;
+}
+
+/* The deviation of one projection res from the measured curve m, into rep and span_max:
+** the certified bound (filter_bound.c; polynomial curves) when it meets tol, measured by
+** the feet from the same parameter (a true distance, within the bound); otherwise the
+** sampled distance, the global closest points confirming a result the cheap local measure
+** finds within tol. */
+static bsfit_err deviation(const bsfit_curve *res, const bsfit_curve *m, const bsfit__reduce_arg *r,
+                           const bsfit__breaks *b, double *span_max, const bsfit_allocator *al,
+                           bsfit_reduce_report *rep, bsfit_status *st) {
+  bsfit__bound bd;
+  /* a rational difference is no polynomial: its Bernstein form would bound nothing */
+  bsfit_err e = m->weights != NULL ? BSFIT_EDEGREE
+                                   : bsfit__curve_diff_bound(res, m, r->tol, b, span_max, al,
+                                                             &bd, st);
+  if (e != BSFIT_OK && e != BSFIT_EDEGREE) return e;
+  rep->bound = e == BSFIT_OK ? bd.bound : INFINITY;
+  if (e == BSFIT_OK && bd.bound <= r->tol && r->bound_only) {
+    rep->max_deviation = bd.bound;
+    return BSFIT_OK;
+  }
+  if (e == BSFIT_OK && bd.bound <= r->tol)
+    return bsfit__curve_distance(res, m, r->per_span, BSFIT__DIST_FEET, NULL, NULL, al,
+                                 &rep->max_deviation, st);
+  e = bsfit__curve_distance(res, m, r->per_span, BSFIT__DIST_LOCAL, b, span_max, al,
+                            &rep->max_deviation, st);
+  if (e == BSFIT_OK && rep->max_deviation <= r->tol)
+    e = bsfit__curve_distance(res, m, r->per_span, BSFIT__DIST_CORRESPONDING, b, span_max, al,
+                              &rep->max_deviation, st);
+  return e;
 }
 
 bsfit_err bsfit__reduce_loop(const bsfit_curve *c, const bsfit__reduce_arg *r, bsfit__breaks *b,
@@ -414,15 +419,8 @@ bsfit_err bsfit__reduce_loop(const bsfit_curve *c, const bsfit__reduce_arg *r, b
       span_max = bsfit__alloc(al, cap * sizeof(double));
       if (span_max == NULL) e = bsfit__fail(st, BSFIT_ENOMEM, "out of memory for span deviations");
     }
-    /* the local measure (an upper bound) first: the global one, dearer, only to confirm
-    ** a result the local one finds within tol */
     if (e == BSFIT_OK)
-      e = bsfit__curve_distance(res, r->measure ? r->measure : c, r->per_span, BSFIT__DIST_LOCAL,
-                                b, span_max, al, &rep->max_deviation, st);
-    if (e == BSFIT_OK && !r->local && rep->max_deviation <= r->tol)
-      e = bsfit__curve_distance(res, r->measure ? r->measure : c, r->per_span,
-                                BSFIT__DIST_CORRESPONDING, b, span_max, al, &rep->max_deviation,
-                                st);
+      e = deviation(res, r->measure ? r->measure : c, r, b, span_max, al, rep, st);
     rep->rounds++;
     if (e != BSFIT_OK || rep->max_deviation <= r->tol) break;
     /* knots that do not lower the deviation cannot meet tol: the input's own detail */
@@ -434,7 +432,7 @@ bsfit_err bsfit__reduce_loop(const bsfit_curve *c, const bsfit__reduce_arg *r, b
                       "(deviation %g)", r->degree, r->tol, added, rep->max_deviation);
       break;
     }
-    e = split_spans(b, span_max, r->tol, al, &now);
+    e = bsfit__split_spans(b, span_max, r->tol, al, &now);
     if (e != BSFIT_OK) {
       e = bsfit__fail(st, BSFIT_ENOMEM, "out of memory adding knots");
       break;

@@ -9,11 +9,11 @@
 ** thin-plate energy (the integral of |S_uu|^2 + 2 |S_uv|^2 + |S_vv|^2, sampled) relative
 ** to the input's kept, both measured over the interior no kernel support reaches from an
 ** edge (near the edges the end rule, the surface extended as constant, shapes the
-** filter). The distance to the input is bounded by the largest difference at equal
-** parameters on a grid (the input extended as constant beyond its edges, as the filter
-** sees it): every point of either surface lies that close to the other, so this upper
-** bound stands in for the closest-point distance. No knots are added: where the
-** projection on the input's break points misses tol, the width is narrower.
+** filter). The distance to the input is the certified upper bound of filter_bound.c, the
+** largest |R(u,v) - S(u,v)| from the Bernstein coefficients of the difference on every
+** patch: every point of either surface lies that close to the other, so it bounds the
+** true distance from above. No knots are added: where the projection on the input's break
+** points misses tol, the width is narrower.
 */
 #include "filter_internal.h"
 
@@ -25,7 +25,6 @@
 #define BEYOND 1.5        /* ... until the distance is this many times tol */
 #define DOWN 16           /* steps down, at most */
 #define BISECT 3
-#define GRID 4            /* grid samples per knot span of the input, each direction */
 #define ENERGY_GRID 6     /* energy samples per knot span, each direction */
 #define TRIES 8           /* the final width shrinks at most this often, by SHRINK */
 #define SHRINK 0.8
@@ -46,26 +45,6 @@ static size_t spans(const double *U, size_t n, int p) {
   size_t i, k = 0;
   for (i = (size_t)p; i < n; i++) k += U[i + 1] > U[i];
   return k;
-}
-
-/* max |A(u,v) - S(clamp(u,v))| on a grid over A's domain (A's domain holds S's or is
-** S's). */
-static double grid_deviation(const sctx *x, const bsfit_surface *A) {
-  double ua, ub, va, vb, a[4], b[4], worst = 0.0;
-  size_t nu = GRID * spans(x->s->knots_u, x->s->nu, x->s->degree_u) + 1;
-  size_t nv = GRID * spans(x->s->knots_v, x->s->nv, x->s->degree_v) + 1, i, j;
-  int k;
-  bsfit_surface_domain(A, &ua, &ub, &va, &vb);
-  for (i = 0; i < nu; i++)
-    for (j = 0; j < nv; j++) {
-      double u = ua + (ub - ua) * (double)i / (double)(nu - 1), d = 0.0;
-      double v = va + (vb - va) * (double)j / (double)(nv - 1);
-      bsfit_surface_eval(A, u, v, a, NULL);
-      bsfit_surface_eval(x->s, fmin(fmax(u, x->ua), x->ub), fmin(fmax(v, x->va), x->vb), b, NULL);
-      for (k = 0; k < A->dim; k++) d += (a[k] - b[k]) * (a[k] - b[k]);
-      if (sqrt(d) > worst) worst = sqrt(d);
-    }
-  return worst;
 }
 
 /* The sampled thin-plate energy of A over the input's domain less margins mu, mv at each
@@ -108,86 +87,22 @@ static void interior_energies(const sctx *x, const bsfit_surface *A, int r, doub
 ** The tensor projection on the input's break points
 ** ===================================================================== */
 
-/* The input's distinct knots of one direction in its domain [U_p, U_n]. */
-static bsfit_err breaks_of(const double *U, size_t n, int p, const bsfit_allocator *al,
-                           bsfit__breaks *b) {
-  size_t i;
-  memset(b, 0, sizeof *b);
-  if (bsfit__breaks_reserve(al, b, n + 3) != BSFIT_OK) return BSFIT_ENOMEM;
-  b->x[b->n++] = U[p];
-  for (i = (size_t)p + 1; i <= n; i++)
-    if (U[i] > b->x[b->n - 1]) b->x[b->n++] = U[i];
-  for (i = 0; i < b->n; i++) b->mult[i] = 1;
-  return BSFIT_OK;
-}
-
-/* dst[(j*rows + i)*dim + c] = src[(i*cols + j)*dim + c] */
-static void transpose(const double *src, size_t rows, size_t cols, size_t dim, double *dst) {
-  size_t i, j;
-  for (i = 0; i < rows; i++)
-    for (j = 0; j < cols; j++)
-      memcpy(dst + (j * rows + i) * dim, src + (i * cols + j) * dim, dim * sizeof(double));
-}
-
-/* Along v on the u-projected spline fu, then the surface. */
-static bsfit_err project_v(const bsfit_surface *F, const bsfit__fspline *fu,
-                           const bsfit__breaks *bv, int q, const bsfit_allocator *al,
-                           bsfit_surface *out, bsfit_status *st) {
-  size_t dim = (size_t)F->dim, nu2 = fu->n, bytes = fu->n * fu->d * sizeof(double);
-  double *tr = bsfit__alloc(al, bytes);
-  bsfit__fview v;
-  bsfit__fspline fv;
-  bsfit_err e;
-  if (tr == NULL) return bsfit__fail(st, BSFIT_ENOMEM, "out of memory for a transposed net");
-  transpose(fu->P, nu2, F->nv, dim, tr);
-  v.p = F->degree_v;
-  v.n = F->nv;
-  v.d = nu2 * dim;
-  v.U = F->knots_v;
-  v.P = tr;
-  e = bsfit__project(&v, NULL, 0, q, bv, al, &fv, st);
-  bsfit__free(al, tr, bytes);
-  if (e != BSFIT_OK) return e;
-  bsfit_surface_init(out);
-  e = bsfit_surface_alloc(out, q, q, F->dim, nu2, fv.n, 0, al, st);
-  if (e == BSFIT_OK) {
-    memcpy(out->knots_u, fu->U, (nu2 + (size_t)q + 1) * sizeof(double));
-    memcpy(out->knots_v, fv.U, (fv.n + (size_t)q + 1) * sizeof(double));
-    transpose(fv.P, fv.n, nu2, dim, out->ctrl);
-    e = bsfit_surface_validate(out, st);
-  }
-  bsfit__fspline_free(al, &fv);
-  if (e != BSFIT_OK) bsfit_surface_free(out);
-  return e;
-}
-
 /* The L2 projection of F, over the input's domain, on degree q in both directions on the
-** input's break points. Over the input's domain only: the filter's widened edges, where
-** it turns into the constant extension, would make the projection ring (the L2 projection
-** is not local) into the interior. */
+** input's break points (filter_reduce_surface.c). Over the input's domain only: the
+** filter's widened edges, where it turns into the constant extension, would make the
+** projection ring (the L2 projection is not local) into the interior. */
 static bsfit_err project_surface(const sctx *x, const bsfit_surface *F, bsfit_surface *out,
                                  bsfit_status *st) {
+  const bsfit_surface *s = x->s;
   bsfit__breaks bu, bv;
-  bsfit__fview v;
-  bsfit__fspline fu;
   bsfit_err e;
   memset(&bv, 0, sizeof bv);
-  if (breaks_of(x->s->knots_u, x->s->nu, x->s->degree_u, x->al, &bu) != BSFIT_OK ||
-      breaks_of(x->s->knots_v, x->s->nv, x->s->degree_v, x->al, &bv) != BSFIT_OK) {
-    bsfit__breaks_free(x->al, &bu);
-    bsfit__breaks_free(x->al, &bv);
-    return bsfit__fail(st, BSFIT_ENOMEM, "out of memory for break points");
-  }
-  v.p = F->degree_u;
-  v.n = F->nu;
-  v.d = F->nv * (size_t)F->dim;
-  v.U = F->knots_u;
-  v.P = F->ctrl;
-  e = bsfit__project(&v, NULL, 0, x->q, &bu, x->al, &fu, st);
-  if (e == BSFIT_OK) {
-    e = project_v(F, &fu, &bv, x->q, x->al, out, st);
-    bsfit__fspline_free(x->al, &fu);
-  }
+  e = bsfit__knot_breaks(s->knots_u, s->nu + (size_t)s->degree_u + 1, s->degree_u, x->ua, x->ub,
+                         x->q, NULL, 0, x->al, &bu, st);
+  if (e == BSFIT_OK)
+    e = bsfit__knot_breaks(s->knots_v, s->nv + (size_t)s->degree_v + 1, s->degree_v, x->va,
+                           x->vb, x->q, NULL, 0, x->al, &bv, st);
+  if (e == BSFIT_OK) e = bsfit__project_surface(F, x->q, x->q, &bu, &bv, 0, x->al, out, st);
   bsfit__breaks_free(x->al, &bu);
   bsfit__breaks_free(x->al, &bv);
   return e;
@@ -207,8 +122,9 @@ typedef struct scand {
 
 static int fatal(bsfit_err e) { return e == BSFIT_ENOMEM || e == BSFIT_EINTR; }
 
-/* Filter of order r at width w (spans), projected; c receives R and its deviation. */
+/* Filter of order r at width w (spans), projected; c receives R and its certified bound. */
 static bsfit_err evaluate(sctx *x, int r, double w, scand *c, bsfit_status *st) {
+  bsfit__bound bd;
   bsfit_surface F;
   bsfit_err e;
   x->evals++;
@@ -220,7 +136,9 @@ static bsfit_err evaluate(sctx *x, int r, double w, scand *c, bsfit_status *st) 
   e = bsfit_filter_kernel_surface_delta(x->s, r, r, w * x->hu, w * x->hv, &F, st);
   if (e == BSFIT_OK) e = project_surface(x, &F, &c->R, st);
   bsfit_surface_free(&F);
-  if (e == BSFIT_OK) c->dev = grid_deviation(x, &c->R);
+  if (e == BSFIT_OK)
+    e = bsfit__surface_diff_bound(&c->R, x->s, x->tol, NULL, NULL, NULL, NULL, x->al, &bd, st);
+  c->dev = e == BSFIT_OK ? bd.bound : INFINITY;
   return e;
 }
 
@@ -281,8 +199,13 @@ static bsfit_err check_smooth_surface(const bsfit_surface *s, const bsfit_smooth
   if (e != BSFIT_OK) return e;
   if (s->weights != NULL)
     return bsfit__fail(st, BSFIT_EINVAL, "rational surfaces cannot be filtered");
-  if (q < 1 || q > BSFIT_MAX_DEGREE)
-    return bsfit__fail(st, BSFIT_EDEGREE, "degree = %d must be in 1..%d", q, BSFIT_MAX_DEGREE);
+  if (s->periodic_u) /* the kernel filters unwrap closed curves, not yet closed surfaces */
+    return bsfit__fail(st, BSFIT_EINVAL, "surfaces closed around u cannot be smoothed");
+  if (q < 1 || q > BSFIT__BERN_MAX)
+    return bsfit__fail(st, BSFIT_EDEGREE, "degree = %d must be in 1..%d", q, BSFIT__BERN_MAX);
+  if (s->degree_u > BSFIT__BERN_MAX || s->degree_v > BSFIT__BERN_MAX)
+    return bsfit__fail(st, BSFIT_EDEGREE, "surface degrees %d x %d above %d: no distance bound",
+                       s->degree_u, s->degree_v, BSFIT__BERN_MAX);
   if (!isfinite(o->tol)) return bsfit__fail(st, BSFIT_ENONFINITE, "tol = %g is not finite", o->tol);
   if (!(o->tol > 0)) return bsfit__fail(st, BSFIT_EINVAL, "tol = %g must be > 0", o->tol);
   pmax = s->degree_u > s->degree_v ? s->degree_u : s->degree_v;
@@ -360,7 +283,7 @@ bsfit_err bsfit_filter_smooth_surface(const bsfit_surface *s, const bsfit_smooth
   rep->changed = 1;
   rep->order = best.order;
   rep->delta = best.w * x.hu;
-  rep->max_deviation = best.dev;
+  rep->max_deviation = rep->bound = best.dev;
   rep->energy_before = best.before;
   rep->energy_after = best.energy;
   bsfit_surface_move(&best.R, out);

@@ -11,6 +11,7 @@
 **   bs.filter.kernel(C, {order = r, k = k | delta = d})   r box passes (B-spline kernel)
 **   bs.filter.kernel(S, {order = r | order_u =, order_v =, k =, l = | delta_u =, delta_v =})
 **   bs.filter.reduce(C [, {degree = 3, tol = t, max_added =, samples =}])  -> C', report
+**   bs.filter.reduce(S [, {degree = 3 | {3, 3}, tol = t, max_added =}])    -> S', report
 **   bs.filter.smooth(C, {tol = t [, degree = 3] [, order = r]})           -> C', report
 **   bs.filter.distance(A, B [, per_span])   distance between two curves as point sets
 ** reduce and smooth return nil, message, code for numerical outcomes (a tolerance not
@@ -233,19 +234,82 @@ static double opt_tol(lua_State *L, int t, double def) {
   return tol;
 }
 
-/* bs.filter.reduce(C [, opts]) -> curve, {max_deviation, knots_added = {...}, rounds} */
+/* The degree field of reduce's options at t: absent 3, a number, or {qu, qv} (surfaces);
+** each in 1..max. */
+static void opt_degrees(lua_State *L, int t, int surface, int max, int *qu, int *qv) {
+  int i, q[2] = {3, 3};
+  int ty = bsfit__lua_field(L, t, "degree");
+  if (ty == LUA_TTABLE && surface) {
+    for (i = 0; i < 2; i++) {
+      lua_Integer v;
+      int isint;
+      lua_rawgeti(L, -1 - i, i + 1);
+      v = lua_tointegerx(L, -1, &isint);
+      if (!isint || v < 1 || v > max)
+        luaL_argerror(L, t, lua_pushfstring(L, "field 'degree' must be {qu, qv}, each in 1..%d",
+                                            max));
+      q[i] = (int)v;
+    }
+    lua_pop(L, 3);
+  } else {
+    lua_pop(L, 1);
+    q[0] = q[1] = (int)opt_integer(L, t, "degree", 3);
+    if (q[0] < 1 || q[0] > max)
+      luaL_argerror(L, t, lua_pushfstring(L, "field 'degree' must be in 1..%d", max));
+  }
+  *qu = q[0];
+  *qv = q[1];
+}
+
+/* bs.filter.reduce(S [, {degree = q | {qu, qv}, tol = t, max_added =}]) -> surface,
+** {max_deviation, bound, knots_added = count, rounds} */
+static int reduce_surface(lua_State *L) {
+  static const char *const names[] = {"degree", "tol", "max_added", NULL};
+  bsfit_surface *s = bsfit__lua_checksurface(L, 1);
+  int t = bsfit__lua_opttable(L, 2, names);
+  bsfit_reduce_surface_opts o;
+  bsfit_reduce_report rep;
+  bsfit_allocator a;
+  bsfit_surface_ud *ud;
+  bsfit_status st;
+  bsfit_err e;
+  lua_Integer mx = opt_integer(L, t, "max_added", 0);
+  memset(&o, 0, sizeof o);
+  opt_degrees(L, t, 1, 12, &o.degree_u, &o.degree_v);
+  luaL_argcheck(L, mx >= 0, 2, "field 'max_added' must be >= 0");
+  o.tol = opt_tol(L, t, HUGE_VAL);
+  o.max_added = (size_t)mx;
+  lua_settop(L, 2);
+  ud = bsfit__lua_newsurface(L, &a);
+  e = bsfit_filter_reduce_surface(s, &o, &ud->s, &rep, &st);
+  if (e != BSFIT_OK) return bsfit__lua_result(L, e, &st, 0, 2);
+  lua_createtable(L, 0, 4);
+  set_number(L, "max_deviation", rep.max_deviation);
+  set_number(L, "bound", rep.bound);
+  set_integer(L, "rounds", rep.rounds);
+  set_integer(L, "knots_added", (lua_Integer)rep.knots_added);
+  return 2;
+}
+
+/* bs.filter.reduce(C [, opts]) -> curve, {max_deviation, bound, knots_added = {...}, rounds};
+** a surface: reduce_surface */
 static int filter_reduce(lua_State *L) {
   static const char *const names[] = {"degree", "tol", "max_added", "samples", NULL};
-  bsfit_curve *c = bsfit__lua_checkcurve(L, 1);
-  int t = bsfit__lua_opttable(L, 2, names);
+  bsfit_curve *c;
+  int t;
   bsfit_reduce_opts o;
   bsfit_reduce_report rep;
   bsfit_allocator a;
   bsfit_curve_ud *ud;
   bsfit_status st;
   bsfit_err e;
-  lua_Integer q = opt_integer(L, t, "degree", 3), mx = opt_integer(L, t, "max_added", 0);
-  lua_Integer ns = opt_integer(L, t, "samples", 0);
+  lua_Integer q, mx, ns;
+  if (luaL_testudata(L, 1, BSFIT_SURFACE_T)) return reduce_surface(L);
+  c = bsfit__lua_checkcurve(L, 1);
+  t = bsfit__lua_opttable(L, 2, names);
+  q = opt_integer(L, t, "degree", 3);
+  mx = opt_integer(L, t, "max_added", 0);
+  ns = opt_integer(L, t, "samples", 0);
   memset(&o, 0, sizeof o);
   luaL_argcheck(L, q >= 1 && q <= BSFIT_MAX_DEGREE, 2, "field 'degree' must be in 1..30");
   luaL_argcheck(L, mx >= 0 && ns >= 0, 2, "fields 'max_added' and 'samples' must be >= 0");
@@ -257,8 +321,9 @@ static int filter_reduce(lua_State *L) {
   ud = bsfit__lua_newcurve(L, &a);
   e = bsfit_filter_reduce_curve(c, &o, &ud->c, &rep, &st);
   if (e != BSFIT_OK) return bsfit__lua_result(L, e, &st, 0, 2);
-  lua_createtable(L, 0, 3);
+  lua_createtable(L, 0, 4);
   set_number(L, "max_deviation", rep.max_deviation);
+  set_number(L, "bound", rep.bound);
   set_integer(L, "rounds", rep.rounds);
   push_added(L, c, &ud->c);
   lua_setfield(L, -2, "knots_added");
@@ -266,7 +331,7 @@ static int filter_reduce(lua_State *L) {
 }
 
 static void push_smooth_report(lua_State *L, const bsfit_smooth_report *r) {
-  lua_createtable(L, 0, 10);
+  lua_createtable(L, 0, 11);
   lua_pushboolean(L, r->changed);
   lua_setfield(L, -2, "changed");
   set_integer(L, "order", r->order);
@@ -278,6 +343,7 @@ static void push_smooth_report(lua_State *L, const bsfit_smooth_report *r) {
   set_number(L, "energy_before", r->energy_before);
   set_number(L, "energy_after", r->energy_after);
   set_integer(L, "evaluations", r->evaluations);
+  set_number(L, "bound", r->bound);
 }
 
 /* The options of bs.filter.smooth at 2 into o. */

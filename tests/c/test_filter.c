@@ -24,6 +24,7 @@
 #include "bsfit.h"
 #include "cmocka_double.h"
 #include "testutil.h"
+#include "filter_testutil.h"
 
 #define EPS_FILTER 1e-10 /* filtered curve vs numerical window average */
 #define EPS_POINT 1e-12  /* control points that must be copies */
@@ -31,17 +32,9 @@
 
 static const double PI = 3.14159265358979323846;
 
-static void expect_error(bsfit_err got, bsfit_err want, const bsfit_status *st) {
-  assert_int_equal(got, want);
-  assert_int_equal(st->code, want);
-  assert_true(strlen(st->msg) > 0);
-}
-
 /* {====================================================================
 ** Quadrature: adaptive Gauss-Legendre between break points
 ** ===================================================================== */
-
-typedef void (*vec_fn)(const void *ctx, double u, double *out);
 
 /* 5-point rule (the surface test's tensor rule) */
 static const double GL_X[5] = {-0.9061798459386640, -0.5384693101056831, 0.0, 0.5384693101056831,
@@ -110,43 +103,6 @@ static void window_average(vec_fn f, const void *ctx, const double *brk, size_t 
 ** Curves under test and their extensions
 ** ===================================================================== */
 
-static void curve_fn(const void *ctx, double u, double *out) {
-  bsfit_status st;
-  assert_int_equal(bsfit_curve_eval((const bsfit_curve *)ctx, u, out, &st), BSFIT_OK);
-}
-
-/* C(u) clamped to the domain: the constant extension of a clamped curve */
-static void clamped_fn(const void *ctx, double u, double *out) {
-  const bsfit_curve *c = ctx;
-  double a, b;
-  bsfit_curve_domain(c, &a, &b);
-  curve_fn(ctx, u < a ? a : (u > b ? b : u), out);
-}
-
-/* The end rule by definition: K copies of V^0 before, K of V^{n-1} after, on knots
-** extended with spacing h (any positive spacing gives the same curve). */
-static void pad_curve(const bsfit_curve *c, size_t K, double h, bsfit_curve *out) {
-  size_t p = (size_t)c->degree, n = c->n, d = (size_t)c->dim, nk = n + p + 1, i;
-  double *U = malloc((nk + 2 * K) * sizeof(double)), *P = malloc((n + 2 * K) * d * sizeof(double));
-  bsfit_status st;
-  assert_non_null(U);
-  assert_non_null(P);
-  for (i = 0; i < nk + 2 * K; i++) {
-    if (i < K) U[i] = c->knots[0] - (double)(K - i) * h;
-    else if (i < K + nk) U[i] = c->knots[i - K];
-    else U[i] = c->knots[nk - 1] + (double)(i - K - nk + 1) * h;
-  }
-  for (i = 0; i < n + 2 * K; i++) {
-    size_t j = i < K ? 0 : (i - K >= n ? n - 1 : i - K);
-    memcpy(P + i * d, c->ctrl + j * d, d * sizeof(double));
-  }
-  bsfit_curve_init(out);
-  assert_int_equal(bsfit_curve_new(out, c->degree, c->dim, n + 2 * K, U, P, NULL, 0, NULL, &st),
-                   BSFIT_OK);
-  free(U);
-  free(P);
-}
-
 /* Checks |F(t) - window average of f| <= EPS_FILTER at NT parameters of F's domain. */
 static void check_against_integral(const bsfit_curve *F, vec_fn f, const void *ctx,
                                    const double *brk, size_t nb, double delta) {
@@ -161,11 +117,6 @@ static void check_against_integral(const bsfit_curve *F, vec_fn f, const void *c
     window_average(f, ctx, brk, nb, t, delta, F->dim, want);
     for (k = 0; k < F->dim; k++) assert_float_equal(got[k], want[k], EPS_FILTER);
   }
-}
-
-static void random_points(test_rng *r, size_t n, int dim, double *P) {
-  size_t i;
-  for (i = 0; i < n * (size_t)dim; i++) P[i] = rng_range(r, -1.0, 1.0);
 }
 
 /* uniform unclamped curve on [0, 1] */

@@ -25,17 +25,12 @@
 #include "bsfit.h"
 #include "cmocka_double.h"
 #include "testutil.h"
+#include "filter_testutil.h"
 
 #define EPS_CONV 1e-10 /* filtered curve vs numerical convolution */
 #define EPS_PASS 1e-12 /* kernel vs r box passes */
 #define NT 1000        /* parameters checked per curve */
 #define MAXB 4096      /* break points of one convolution */
-
-static void expect_error(bsfit_err got, bsfit_err want, const bsfit_status *st) {
-  assert_int_equal(got, want);
-  assert_int_equal(st->code, want);
-  assert_true(strlen(st->msg) > 0);
-}
 
 /* {====================================================================
 ** The kernel and the convolution, by quadrature
@@ -62,8 +57,6 @@ static double cardinal(int r, double y) {
 static double kernel(int r, double delta, double x) {
   return cardinal(r, (x + r * delta) / (2.0 * delta)) / (2.0 * delta);
 }
-
-typedef void (*vec_fn)(const void *ctx, double u, double *out);
 
 /* 6-point rule (exact to degree 11) and 5-point rule (exact to degree 9) */
 static const double G6_X[6] = {-0.9324695142031521, -0.6612093864662645, -0.2386191860831969,
@@ -147,48 +140,6 @@ static void convolve(conv_ctx *c, const double *knots, size_t nk, double t, doub
 /* {====================================================================
 ** Curves under test, their extensions and knots
 ** ===================================================================== */
-
-static void curve_fn(const void *ctx, double u, double *out) {
-  bsfit_status st;
-  assert_int_equal(bsfit_curve_eval((const bsfit_curve *)ctx, u, out, &st), BSFIT_OK);
-}
-
-/* the constant extension of a clamped curve */
-static void clamped_fn(const void *ctx, double u, double *out) {
-  const bsfit_curve *c = ctx;
-  double a, b;
-  bsfit_curve_domain(c, &a, &b);
-  curve_fn(ctx, u < a ? a : (u > b ? b : u), out);
-}
-
-static void random_points(test_rng *r, size_t n, int dim, double *P) {
-  size_t i;
-  for (i = 0; i < n * (size_t)dim; i++) P[i] = rng_range(r, -1.0, 1.0);
-}
-
-/* The end rule by definition: K copies of V^0 before and of V^{n-1} after, on knots
-** extended by the spacing h. */
-static void pad_curve(const bsfit_curve *c, size_t K, double h, bsfit_curve *out) {
-  size_t p = (size_t)c->degree, n = c->n, d = (size_t)c->dim, nk = n + p + 1, i;
-  double *U = malloc((nk + 2 * K) * sizeof(double)), *P = malloc((n + 2 * K) * d * sizeof(double));
-  bsfit_status st;
-  assert_non_null(U);
-  assert_non_null(P);
-  for (i = 0; i < nk + 2 * K; i++) {
-    if (i < K) U[i] = c->knots[0] - (double)(K - i) * h;
-    else if (i < K + nk) U[i] = c->knots[i - K];
-    else U[i] = c->knots[nk - 1] + (double)(i - K - nk + 1) * h;
-  }
-  for (i = 0; i < n + 2 * K; i++) {
-    size_t j = i < K ? 0 : (i - K >= n ? n - 1 : i - K);
-    memcpy(P + i * d, c->ctrl + j * d, d * sizeof(double));
-  }
-  bsfit_curve_init(out);
-  assert_int_equal(bsfit_curve_new(out, c->degree, c->dim, n + 2 * K, U, P, NULL, 0, NULL, &st),
-                   BSFIT_OK);
-  free(U);
-  free(P);
-}
 
 enum kind { OPEN_UNIFORM, OPEN_CLAMPED, CLOSED_UNIFORM, CLOSED_NONUNIFORM };
 

@@ -297,3 +297,54 @@ T.test("smooth: open sections keep their domain and stay within tol", function()
     T.ok(not rep.changed or S:bending_energy(E) < C:bending_energy(E))
   end
 end)
+
+-- the largest |A(u, v) - B(u, v)| on a k x k grid (dense sampling, independent of the bound)
+local function sampled_difference(A, B, k)
+  local worst = 0
+  for i = 0, k do
+    for j = 0, k do
+      local x, y, z = A:eval(i / k, j / k)
+      local p, q, r = B:eval(i / k, j / k)
+      worst = math.max(worst, math.sqrt((x - p) ^ 2 + (y - q) ^ 2 + (z - r) ^ 2))
+    end
+  end
+  return worst
+end
+
+T.test("reduce: surfaces, raised and lowered again, and within a tolerance", function()
+  for seed = 1, 3 do
+    local S = noisy_surface(9 + seed, 0.01 * seed, 10 + seed)
+    -- degree 4 on the same break points holds S exactly; back to 3 it is S again
+    local S4, r4 = bs.filter.reduce(S, { degree = 4 })
+    T.eq(select(1, S4:degree()), 4)
+    T.ok(sampled_difference(S4, S, 40) <= 1e-12, "raised")
+    local S3, r3 = bs.filter.reduce(S4, { degree = { 3, 3 }, tol = 1e-9 })
+    T.ok(S3, tostring(r3))
+    T.eq(r3.knots_added, 0)
+    local P, Q = S3:control_points(), S:control_points() -- Points, row-major over (i, j)
+    T.eq(#P, #Q)
+    for i = 1, #P do
+      local a, b = { P:get(i) }, { Q:get(i) }
+      for k = 1, 3 do T.near(a[k], b[k], 1e-12) end
+    end
+    -- lower degrees within tol: the bound holds against sampling and meets tol
+    local tol = 0.002
+    local R, rep = bs.filter.reduce(S, { degree = { 2, 1 }, tol = tol })
+    T.ok(R, tostring(rep))
+    local pu, pv = R:degree()
+    T.eq(pu, 2)
+    T.eq(pv, 1)
+    T.ok(rep.bound <= tol and rep.max_deviation == rep.bound)
+    T.ok(sampled_difference(R, S, 60) <= rep.bound, "the bound is an upper bound")
+    T.ok(rep.knots_added > 0, "knots were needed")
+    T.ok(r4.bound <= 1e-10, "the bound of an exact result: its rounding slack only")
+  end
+  local S = noisy_surface(8, 0.01, 1)
+  T.raises({ match = "'degree'" }, bs.filter.reduce, S, { degree = { 3 } })
+  T.raises({ match = "'degree'" }, bs.filter.reduce, S, { degree = 0 })
+  T.raises({ match = "'tol'" }, bs.filter.reduce, S, { tol = 0 })
+  local R, msg, code = bs.filter.reduce(S, { degree = 1, tol = 1e-12, max_added = 4 })
+  T.eq(R, nil)
+  T.eq(code, "ENOCONV")
+  T.ok(msg:match("not reached"), msg)
+end)

@@ -132,10 +132,10 @@ function M.main(args)
       local what = rep.changed and ("kernel order %d, delta %.6g, %d knots added")
                                      :format(rep.order, rep.delta, rep.knots_added)
                    or "nothing smoother within tol: unchanged"
-      print(("%s: %s, degree %d -> %d, max distance %.6g (tol %.6g), total turning %.6g -> %.6g, "
-             .. "bending energy %.6g -> %.6g")
-        :format(o.out, what, C:degree(), F:degree(), rep.max_deviation, o.tol, rep.turning_before,
-                rep.turning_after, rep.energy_before, rep.energy_after))
+      print(("%s: %s, degree %d -> %d, max distance %.6g (certified bound %.6g, tol %.6g), "
+             .. "total turning %.6g -> %.6g, bending energy %.6g -> %.6g")
+        :format(o.out, what, C:degree(), F:degree(), rep.max_deviation, rep.bound, o.tol,
+                rep.turning_before, rep.turning_after, rep.energy_before, rep.energy_after))
       return
     end
     print(("%s: degree %d -> %d, max deviation %.6g, total turning %.6g -> %.6g, bending energy %.6g -> %.6g")
