@@ -306,24 +306,25 @@ local EVIDENCE, MIN_TURN, AGREE = 25, 15, 1.25
 local NOISY_MAX = 500 -- larger noisy sections keep the smooth path (the noise search costs m r)
 
 local function noisy_pieces(P, ctx)
-  if not (ctx.sigma > 0) then return nil end
+  if not (ctx.sigma > 0) then return nil, "no noise" end
   local s = common.ok("noise of the pieces", bs.geom.segment_sigma(P, { closed = closed(ctx),
                                                                       max = AGREE * ctx.sigma }))
-  if not (s > 0 and s < AGREE * ctx.sigma) then return nil end
+  if not (s > 0 and s < AGREE * ctx.sigma) then return nil, ("noise of the pieces %.3g, of windows %.3g"):format(s, ctx.sigma) end
   local pieces = common.ok("segmentation", bs.geom.segment(P, { closed = closed(ctx), sigma = s }))
   local held = 0
   for i, p in ipairs(pieces) do
     if p.kind ~= "free" then held = held + p.count end
-    if p.kind == "free" and p.count == 0 then return nil end -- two models that do not meet
-    if p.join == "corner" and (p.turn < MIN_TURN or p.evidence < EVIDENCE) then return nil end
+    if p.kind == "free" and p.count == 0 then return nil, "bridge" end -- two models that do not meet
+    if p.join == "corner" and (p.turn < MIN_TURN or p.evidence < EVIDENCE) then
+      return nil, ("weak corner %d: turn %.3g evidence %.3g"):format(i, p.turn, p.evidence) end
     local q = pieces[(i - 2) % #pieces + 1]
-    if p.join == "tangent" and p.kind == "line" and q.kind == "line" and #pieces > 1 then return nil end
+    if p.join == "tangent" and p.kind == "line" and q.kind == "line" and #pieces > 1 then return nil, "tangent lines" end
   end
-  if held < 0.9 * #P then return nil end
+  if held < 0.9 * #P then return nil, ("held %d of %d"):format(held, #P) end
   -- the curve itself must stay within the noise of every sample (6 sigma)
   local C = sharp.assemble(P, pieces, { closed = closed(ctx), sigma = s })
-  local _, d = C:closest_many(P)
-  if d:max() > 6 * s then return nil end
+  local d = sharp.distances(C, P, pieces)
+  if d:max() > 6 * s then return nil, ("curve %.3g sigma from a sample"):format(d:max() / s) end
   ctx.segment_sigma, ctx.sharp_curve = s, C
   return pieces
 end
@@ -341,7 +342,11 @@ function steps.segment(P, ctx)
   local pieces = ctx.cache.exact_pieces or
                  common.ok("segmentation", bs.geom.segment(P, { closed = closed(ctx) }))
   if sharp.has_features(pieces, #P) then ctx.segment_sigma = 0; return pieces end
-  if #P <= NOISY_MAX then return noisy_pieces(P, ctx) or {} end
+  if #P <= NOISY_MAX then
+    local pieces, why = noisy_pieces(P, ctx)
+    ctx.sharp_rejected = why
+    return pieces or {}
+  end
   return {}
 end
 
@@ -408,13 +413,12 @@ function steps.ends(P, ctx)
     end
     closed_, clear = math.max(turn(m - 1, m, 1), turn(m, 1, 2)) <= 100, false
   end
-  -- exact lines and arcs that meet across the gap close it, whatever the spacing
+  -- lines and arcs that meet across the gap close it, whatever the spacing
   if not closed_ and P:dim() == 2 and m >= 6 then
-    local pieces = bs.geom.segment(P, { closed = true })
-    if pieces and sharp.has_features(pieces, m) then
-      local meet = true
-      for _, p in ipairs(pieces) do if p.kind == "free" and p.count == 0 then meet = false end end
-      if meet then closed_, clear, ctx.cache.exact_pieces = true, true, pieces end
+    local pieces, exact = sharp.closing_pieces(P, gap)
+    if pieces then
+      closed_, clear = true, true
+      if exact then ctx.cache.exact_pieces = pieces end
     end
   end
   ctx.settings.closed = closed_
@@ -650,7 +654,12 @@ function steps.loops(P, ctx)
 end
 
 function steps.measure(P, ctx)
-  if sharp_path(ctx) then return common.measure(P, ctx) end
+  if sharp_path(ctx) then
+    local d = sharp.distances(ctx.curve, P, ctx.segment)
+    local max, imax = d:max()
+    return common.add_trusted(ctx, { residuals = d:totable(), rms = d:rms(), max = max or 0,
+                                     max_index = imax or 1 })
+  end
   local d = ctx.distances -- the fit's last projection, when it is of this very curve
   if ctx.distances_of ~= ctx.curve or d == nil then
     d = select(2, ctx.curve:project(P, ctx.params_final or ctx.params, NEWTON))
@@ -674,6 +683,7 @@ function M.report(ctx)
   rep.closed_ambiguous = ctx.closed_ambiguous or false
   rep.crossings = ctx.loops or 0
   if sharp_path(ctx) then rep.pieces = ctx.segment end
+  rep.pieces_rejected = ctx.sharp_rejected
   -- warnings: appended to those the common report may already carry
   if ctx.warnings and #ctx.warnings > 0 then
     rep.warnings = rep.warnings or {}

@@ -149,6 +149,38 @@ function M.has_features(pieces, m)
   return held >= 0.5 * m
 end
 
+-- The pieces of a section segmented as closed, when lines and arcs hold it and meet across
+-- the gap between its last and first samples (gap: their distance) without a detour: exact
+-- lines and arcs (returns the pieces and true), else lines and arcs within the noise they
+-- show themselves (bs.geom.segment_sigma) that hold 90% of the samples, meet everywhere and
+-- close at a corner or a tangent no farther from the two samples than 1.5 gaps together
+-- (the end sides of an open run of an outline may meet, but far out), the gap no longer than
+-- twice the longest other step (an open run's ends lie across its shape). nil otherwise.
+function M.closing_pieces(P, gap)
+  local m = #P
+  local longest = 0
+  for i = 1, m - 1 do longest = math.max(longest, dist({ P:get(i) }, { P:get(i + 1) })) end
+  local pieces = bs.geom.segment(P, { closed = true })
+  local exact = pieces and M.has_features(pieces, m)
+  if not exact then
+    local s = bs.geom.segment_sigma(P, { closed = true })
+    if not (s and s > 0) or gap > 2 * longest then return nil end
+    pieces = bs.geom.segment(P, { closed = true, sigma = s })
+    local held = 0
+    for _, p in ipairs(pieces or {}) do if p.kind ~= "free" then held = held + p.count end end
+    if held < 0.9 * m then return nil end
+  end
+  for _, p in ipairs(pieces) do
+    if p.kind == "free" and p.count == 0 then return nil end
+    -- the piece that holds the first sample starts in the gap: its start is the join
+    if p.first == 1 and not exact then
+      local a, b = { P:get(m) }, { P:get(1) }
+      if p.kind == "free" or dist(p.start, a) + dist(p.start, b) > 1.5 * gap then return nil end
+    end
+  end
+  return pieces, exact
+end
+
 -- A closed curve joined from pieces (clamped, its ends equal) in the periodic form
 -- (the seam a knot of multiplicity 3), as the other strategies return closed curves.
 local function periodic_of(C)
@@ -186,6 +218,27 @@ function M.assemble(P, pieces, o)
   pieces[#pieces].range[2] = 1
   if o.closed then C = periodic_of(C) end
   return C
+end
+
+-- The distances of the samples to the curve of the pieces (a Vector): each sample's foot is
+-- found by Newton from its place in its own piece's parameter range, so that it never has
+-- to cross a corner (a foot search from a global start can stall at a C0 knot and report
+-- the distance to the corner instead); the nearer of that and the global closest point.
+function M.distances(C, P, pieces)
+  local a, b = C:domain()
+  local m, u = #P, {}
+  for _, p in ipairs(pieces) do
+    for k = 0, p.count - 1 do
+      local f = (k + 0.5) / p.count
+      u[(p.first - 1 + k) % m + 1] = a + (b - a) * (p.range[1] + f * (p.range[2] - p.range[1]))
+    end
+  end
+  for i = 1, m do u[i] = u[i] or a end
+  local _, d = C:project(P, bs.vector.new(u), 8)
+  local _, g = C:closest_many(P)
+  local t = {}
+  for i = 1, m do t[i] = math.min(d:get(i), g:get(i)) end
+  return bs.vector.new(t)
 end
 
 -- 1-based samples nearest to the corners (for rep.corners)
