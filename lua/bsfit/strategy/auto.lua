@@ -190,6 +190,13 @@ local function knots_for(ctx, n)
   local u = ctx.knot_params or ctx.params
   if closed(ctx) then
     n = math.max(n, #ctx.corners * p + 1) -- each corner takes p knots
+    local breaks = ctx.knot_breaks or ctx.corner_positions or ctx.corners
+    if #breaks == 0 and #u < 12 then
+      -- a handful of points without corners (6 samples of a D): the averaging rule
+      -- around the period (the break placement's empty-span guard needs more points)
+      return common.ok("knots", bs.knots.averaging { params = u, count = n, degree = p,
+                                                     closed = true }), n
+    end
     local K, N = common.ok("knots", bs.knots.breaks { params = u, degree = p, count = n,
       breaks = ctx.knot_breaks or ctx.corner_positions or ctx.corners })
     return widen_corner_spans(ctx, ctx.P, K, N)
