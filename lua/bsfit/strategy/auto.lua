@@ -309,7 +309,13 @@ end
 --     drawn along a smooth curve), and every corner turns by 15 degrees at least and is
 --     worth 25 sigma^2 over one smooth curve through both its sides (EVIDENCE).
 -- Returns the pieces, or {} (one smooth curve).
-local EVIDENCE, MIN_TURN, AGREE = 25, 15, 1.25
+-- The evidence of a corner (how much worse one smooth curve through both its sides explains
+-- their samples, in sigma^2) is, without a corner, about chi-square with the two models'
+-- one or two more parameters: above 14 one time in a thousand. The estimate of sigma from
+-- a few sides may be low by a factor sqrt(2), hence 25; a corner that turns by 60 degrees
+-- or more is not what a smooth curve sampled this sparsely does between two samples (a
+-- star's valley turns less at each sample), and 14 suffices (EVIDENCE_STEEP).
+local EVIDENCE, EVIDENCE_STEEP, STEEP, MIN_TURN, AGREE = 25, 14, 60, 15, 1.25
 local NOISY_MAX = 500 -- larger noisy sections keep the smooth path (the noise search costs m r)
 
 local function noisy_pieces(P, ctx)
@@ -322,7 +328,8 @@ local function noisy_pieces(P, ctx)
   for i, p in ipairs(pieces) do
     if p.kind ~= "free" then held = held + p.count end
     if p.kind == "free" and p.count == 0 then return nil, "bridge" end -- two models that do not meet
-    if p.join == "corner" and (p.turn < MIN_TURN or p.evidence < EVIDENCE) then
+    if p.join == "corner" and (p.turn < MIN_TURN or
+                               p.evidence < (p.turn >= STEEP and EVIDENCE_STEEP or EVIDENCE)) then
       return nil, ("weak corner %d: turn %.3g evidence %.3g"):format(i, p.turn, p.evidence) end
     local q = pieces[(i - 2) % #pieces + 1]
     if p.join == "tangent" and p.kind == "line" and q.kind == "line" and #pieces > 1 then return nil, "tangent lines" end
