@@ -65,7 +65,8 @@ static double fit_model_from(const section *s, int kind, size_t first, size_t n,
     if (!bsfit__fit_line(&r, &md->line)) return HUGE_VAL;
     return bsfit__line_max(&md->line, &r, rms);
   }
-  if (!bsfit__fit_circle(&r, warm && warm->kind == ARC ? &warm->circle : NULL, &md->circle))
+  if (!bsfit__fit_circle(&r, warm && warm->kind == ARC ? &warm->circle : NULL, 1e-3 * s->tol,
+                         &md->circle))
     return HUGE_VAL;
   /* the direction the samples go round the centre */
   for (k = 0; k + 1 < n; k++) {
@@ -114,7 +115,7 @@ static int seed_misses(const section *s, int kind, size_t i, size_t n) {
     double tri[6] = {a[0], a[1], mid[0], mid[1], b[0], b[1]};
     bsfit__run t = {tri, 3, 0, 3};
     bsfit__circle C;
-    if (!bsfit__fit_circle(&t, NULL, &C)) return 0;
+    if (!bsfit__fit_circle(&t, NULL, 0.0, &C)) return 0;
     for (k = 1; k + 1 < n; k++)
       if (bsfit__circle_dist(&C, sample(s, i + k)) > 8 * s->tol) return 1;
   }
