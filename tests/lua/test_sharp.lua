@@ -329,3 +329,32 @@ T.test("never a loop: down-weighted gross outliers, and a crossing that remains 
   T.ok(rep.crossings > 0, "figure eight: crossings " .. rep.crossings)
   T.ok(rep.warnings and rep.warnings[#rep.warnings]:match("crosses itself"), "warning")
 end)
+
+T.test("pictures: corners (C0) as diamonds where pieces meet, tangent joins (G1) as rings", function()
+  local svg = require "bsfit.svg"
+  for _, name in ipairs { "rrect", "keyhole", "D", "hexagon", "T_serif" } do
+    local o = ALL[name]
+    local P = bs.points.new(shapes.sample(o, 6))
+    local C, rep = auto.run(P)
+    local nc, nt = 0, 0
+    for _, p in ipairs(rep.pieces) do
+      if p.join == "corner" then nc = nc + 1 elseif p.join == "tangent" then nt = nt + 1 end
+    end
+    local s = svg.section { points = P, samples = C:sample(400), closed = true,
+                            corners = rep.corners, pieces = rep.pieces }
+    local _, dc = s:gsub('<polygon class="corner"', "")
+    local _, dt = s:gsub('<circle class="tangent"', "")
+    -- the truth: a corner for every true corner, a ring for every tangent join of the outline
+    T.eq(dc, #o.corners, name .. ": corner diamonds")
+    T.eq(dt, #o.prims - #o.corners, name .. ": tangent rings")
+    T.eq(nc + nt, #o.prims, name .. ": joins")
+    T.ok(nc == 0 or s:find(("corner, C0 (%d)"):format(nc), 1, true), name .. ": corner legend")
+    T.ok(nt == 0 or s:find(("tangent join, G1 (%d)"):format(nt), 1, true), name .. ": tangent legend")
+    -- each diamond at a true corner (a corner may lie between samples)
+    for x, y in s:gmatch('<polygon class="corner" points="([^,]+),([^ ]+) ') do
+      local best = math.huge
+      for _, v in ipairs(o.corners) do best = math.min(best, math.abs(v[1] - tonumber(x))) end
+      T.ok(best <= 1e-6 * shapes.size(o), name .. ": diamond at a corner " .. x .. " " .. y)
+    end
+  end
+end)
