@@ -335,6 +335,8 @@ local function noisy_pieces(P, ctx)
     if p.join == "tangent" and p.kind == "line" and q.kind == "line" and #pieces > 1 then return nil, "tangent lines" end
   end
   if held < 0.9 * #P then return nil, ("held %d of %d"):format(held, #P) end
+  local bad = sharp.degenerate(pieces)
+  if bad then return nil, bad end
   -- the curve itself must stay within the noise of every sample (6 sigma)
   local C = sharp.assemble(P, pieces, { closed = closed(ctx), sigma = s })
   local d = sharp.distances(C, P, pieces)
@@ -380,8 +382,10 @@ end
 -- between, the section is closed when the closing chord continues both ends (turns by
 -- at most 100 degrees from the last step and into the first: an open run's ends point
 -- away from each other), and the decision is reported as ambiguous (rep.closed_ambiguous,
--- a warning). Exact lines and arcs that cover the section and meet across the gap close
--- it in any case. closed = true or false is taken as given.
+-- a warning); a larger gap that is still no longer than the longest step elsewhere (a
+-- section sampled unevenly) closes it, as ambiguous. Lines and arcs that cover the section
+-- and meet across the gap (sharp.closing_pieces) close it in any case, clearly. closed =
+-- true or false is taken as given.
 function steps.ends(P, ctx)
   local c = ctx.settings.closed
   if c == true or c == false then return c and "closed" or "open" end
@@ -427,8 +431,11 @@ function steps.ends(P, ctx)
     end
     closed_, clear = math.max(turn(m - 1, m, 1), turn(m, 1, 2)) <= 100, false
   end
+  -- a gap no longer than the longest step elsewhere (samples spread unevenly along long
+  -- sides) is one more step: closed, but say so
+  if not closed_ and gap <= all[#all] then closed_, clear = true, false end
   -- lines and arcs that meet across the gap close it, whatever the spacing
-  if not closed_ and P:dim() == 2 and m >= 6 then
+  if (not closed_ or not clear) and P:dim() == 2 and m >= 6 then
     local pieces, exact = sharp.closing_pieces(P, gap)
     if pieces then
       closed_, clear = true, true

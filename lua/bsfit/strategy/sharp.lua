@@ -139,11 +139,30 @@ local function piece_curve(P, p, o)
   return C, math.max(C:length(), 1e-300)
 end
 
+-- Why pieces cannot be made into one curve (nil when they can): a line or an arc of zero
+-- length between two joins, or an arc that goes all the way round beside other pieces (a
+-- segmentation of a noisy blob can close one arc on itself and leave its neighbour nothing).
+function M.degenerate(pieces)
+  local scale = 0
+  for _, p in ipairs(pieces) do scale = math.max(scale, math.abs(p.start[1]), math.abs(p.start[2])) end
+  for i, p in ipairs(pieces) do
+    local len = p.kind == "arc" and p.radius * math.abs(p.sweep) or dist(p.start, p["end"])
+    if p.kind ~= "free" and not (len > 1e-12 * scale) and not (#pieces == 1 and p.kind == "arc") then
+      return ("piece %d (%s) has no length"):format(i, p.kind)
+    end
+    if p.kind == "arc" and #pieces > 1 and math.abs(p.sweep) >= 2 * math.pi - 1e-9 then
+      return ("arc %d goes all the way round"):format(i)
+    end
+  end
+  return nil
+end
+
 -- Does the segmentation of m samples carry features worth one curve of pieces? Lines
 -- and arcs must hold at least half the samples: a short run that rounded data fits
 -- by chance (4 samples of a cam's base circle, to 6 decimals) does not make a section
 -- of lines and arcs.
 function M.has_features(pieces, m)
+  if M.degenerate(pieces) then return false end
   local held = 0
   for _, p in ipairs(pieces) do if p.kind ~= "free" then held = held + p.count end end
   return held >= 0.5 * m
@@ -155,7 +174,7 @@ end
 -- show themselves (bs.geom.segment_sigma) that hold 90% of the samples, meet everywhere and
 -- close at a corner or a tangent no farther from the two samples than 1.5 gaps together
 -- (the end sides of an open run of an outline may meet, but far out), the gap no longer than
--- twice the longest other step (an open run's ends lie across its shape). nil otherwise.
+-- three times the longest other step (an open run's ends lie across its shape). nil otherwise.
 function M.closing_pieces(P, gap)
   local m = #P
   local longest = 0
@@ -164,7 +183,7 @@ function M.closing_pieces(P, gap)
   local exact = pieces and M.has_features(pieces, m)
   if not exact then
     local s = bs.geom.segment_sigma(P, { closed = true })
-    if not (s and s > 0) or gap > 2 * longest then return nil end
+    if not (s and s > 0) or gap > 3 * longest then return nil end
     pieces = bs.geom.segment(P, { closed = true, sigma = s })
     local held = 0
     for _, p in ipairs(pieces or {}) do if p.kind ~= "free" then held = held + p.count end end
