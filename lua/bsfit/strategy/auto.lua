@@ -67,7 +67,7 @@ end
 
 local function closed(ctx) return common.closed(ctx) end
 
-local size_of, count_range
+local size_of, count_range, gap_decision
 
 -- Adds a warning for rep.warnings.
 local function warn(ctx, msg)
@@ -324,6 +324,7 @@ local function noisy_pieces(P, ctx)
                                                                       max = AGREE * ctx.sigma }))
   if not (s > 0 and s < AGREE * ctx.sigma) then return nil, ("noise of the pieces %.3g, of windows %.3g"):format(s, ctx.sigma) end
   local pieces = common.ok("segmentation", bs.geom.segment(P, { closed = closed(ctx), sigma = s }))
+  ctx.sharp_candidate = { pieces = pieces, sigma = s } -- for the loops step, if need be
   local held = 0
   for i, p in ipairs(pieces) do
     if p.kind ~= "free" then held = held + p.count end
@@ -374,16 +375,38 @@ function steps.params(P, ctx)
     closed = closed(ctx), weights = ctx.settings.point_weights, trust = ctx.settings.trust }))
 end
 
+-- degrees between the steps i -> j and j -> k of P
+local function turn(P, i, j, k)
+  local a, b, c = { P:get(i) }, { P:get(j) }, { P:get(k) }
+  local dot, na, nb = 0, 0, 0
+  for q = 1, #a do
+    local u, v = b[q] - a[q], c[q] - b[q]
+    dot, na, nb = dot + u * v, na + u * u, nb + v * v
+  end
+  if na == 0 or nb == 0 then return 0 end
+  return math.deg(math.acos(math.max(-1, math.min(1, dot / math.sqrt(na * nb)))))
+end
+
+-- Open or closed from the gap alone: closed, clear (see steps.ends). hmax: the longest step.
+function gap_decision(P, gap, h, hmax)
+  local m = #P
+  if gap <= 1.5 * h then return true, true end
+  if gap <= hmax then return true, false end
+  if gap <= 2.5 * h then return math.max(turn(P, m - 1, m, 1), turn(P, m, 1, 2)) <= 100, false end
+  return false, gap > 2.5 * hmax
+end
+
 -- Open or closed (setting closed = "auto", the default): from the gap between the last
 -- and the first point against the steps next to them (the two at each end, h_loc: a
 -- closed section's closing step is like its neighbours, while sections sampled sparsely
 -- along long sides have steps far longer elsewhere) and twice the median step, h =
--- max(h_loc, 2 h_med). A gap up to 1.5 h closes the section; one above 2.5 h opens it;
--- between, the section is closed when the closing chord continues both ends (turns by
--- at most 100 degrees from the last step and into the first: an open run's ends point
--- away from each other), and the decision is reported as ambiguous (rep.closed_ambiguous,
--- a warning); a larger gap that is still no longer than the longest step elsewhere (a
--- section sampled unevenly) closes it, as ambiguous. Lines and arcs that cover the section
+-- max(h_loc, 2 h_med). A gap up to 1.5 h closes the section, and so does one no longer
+-- than the longest step elsewhere (samples spread unevenly along long sides leave steps of
+-- half a side), as ambiguous; one above 2.5 h opens it, as ambiguous when it is within 2.5
+-- times the longest step; between, the section is closed when the closing chord continues
+-- both ends (turns by at most 100 degrees from the last step and into the first: an open
+-- run's ends point away from each other), as ambiguous. Ambiguous decisions are reported
+-- (rep.closed_ambiguous, a warning). Lines and arcs that cover the section
 -- and meet across the gap (sharp.closing_pieces) close it in any case, clearly. closed =
 -- true or false is taken as given.
 function steps.ends(P, ctx)
@@ -415,25 +438,7 @@ function steps.ends(P, ctx)
   table.sort(all)
   local hmed = all[(#all + 1) // 2]
   local gap, h = step(m, 1), math.max(hloc, 2 * hmed)
-  local closed_, clear
-  if gap <= 1.5 * h then closed_, clear = true, true
-  elseif gap > 2.5 * h then closed_, clear = false, true
-  else
-    local function turn(i, j, k) -- degrees between steps i->j and j->k
-      local a, b, c = { P:get(i) }, { P:get(j) }, { P:get(k) }
-      local dot, na, nb = 0, 0, 0
-      for q = 1, #a do
-        local u, v = b[q] - a[q], c[q] - b[q]
-        dot, na, nb = dot + u * v, na + u * u, nb + v * v
-      end
-      if na == 0 or nb == 0 then return 0 end
-      return math.deg(math.acos(math.max(-1, math.min(1, dot / math.sqrt(na * nb)))))
-    end
-    closed_, clear = math.max(turn(m - 1, m, 1), turn(m, 1, 2)) <= 100, false
-  end
-  -- a gap no longer than the longest step elsewhere (samples spread unevenly along long
-  -- sides) is one more step: closed, but say so
-  if not closed_ and gap <= all[#all] then closed_, clear = true, false end
+  local closed_, clear = gap_decision(P, gap, h, all[#all])
   -- lines and arcs that meet across the gap close it, whatever the spacing
   if (not closed_ or not clear) and P:dim() == 2 and m >= 6 then
     local pieces, exact = sharp.closing_pieces(P, gap)
@@ -644,29 +649,74 @@ function steps.reweight(P, ctx)
   return C
 end
 
--- Never a loop: a closed 2D curve is checked for self-intersection (a sweep over max(500, 16 n)
--- samples in C). A smooth fit that crosses itself is refitted with fewer control points
--- (0.8 times, three times at most); a crossing that remains, or one of the pieces' curve,
--- is reported in rep.warnings and rep.crossings. Returns the number of crossings.
+-- A smooth curve that still crosses itself, when lines and arcs within the noise were
+-- found but one of their corners fell short of the evidence: the curve of the pieces,
+-- when it does not cross itself and stays within 6 sigma of every sample, is the better
+-- answer (a loop is a defect; a weakly supported corner only a doubt), said in a warning.
+-- Returns 0 then, else nil.
+local function loop_free_pieces(P, ctx, k)
+  local alt = ctx.sharp_candidate
+  if sharp.degenerate(alt.pieces) or #alt.pieces < 2 then return nil end
+  for _, p in ipairs(alt.pieces) do if p.kind == "free" and p.count == 0 then return nil end end
+  local C = sharp.assemble(P, alt.pieces, { closed = closed(ctx), sigma = alt.sigma })
+  if bs.geom.self_intersections(C, k) > 0 then return nil end
+  if sharp.distances(C, P, alt.pieces):max() > 6 * alt.sigma then return nil end
+  ctx.segment, ctx.segment_sigma, ctx.curve = alt.pieces, alt.sigma, C
+  ctx.corners, ctx.count = sharp.corner_samples(P, alt.pieces), C:distinct()
+  warn(ctx, "the smooth curve crossed itself: fitted the lines and arcs instead (a corner of "
+    .. "theirs is weakly supported by the data)")
+  return 0
+end
+
+-- The smooth path's own sharp corners (triple knots) can swing a sparse section round a
+-- loop between them: when refits with other counts keep a crossing, the section is fitted
+-- again without corners (the corners step replaced by {}), kept when that has none, and
+-- said in a warning. Returns 0 then, else nil.
+local function without_corners(P, ctx)
+  if #ctx.corners == 0 or ctx.opts.corners ~= nil then return nil end
+  local o = {}
+  for key, v in pairs(ctx.opts) do o[key] = v end
+  o.corners, o.closed = {}, true
+  local C, rep = M.run(P, o)
+  if rep.crossings > 0 then return nil end
+  ctx.curve, ctx.corners, ctx.count, ctx.tries = C, {}, rep.count, rep.tries
+  ctx.params_final, ctx.distances, ctx.distances_of = nil, nil, nil
+  warn(ctx, "the curve with sharp corners crossed itself: fitted without them")
+  return 0
+end
+
+-- Never a loop: a closed 2D curve is checked for self-intersection (a sweep over
+-- max(2000, 32 n) samples in C: a loop at a corner can be a few thousandths of the curve
+-- long). A smooth fit that crosses itself is refitted with fewer control points (0.8, 0.64,
+-- 0.51 times), then with more (1.25, 1.56 times: too few can swing a sparse corner round),
+-- the first without a crossing kept (else the one with fewest); a crossing that remains, or
+-- one of the pieces' curve, is reported in rep.warnings and rep.crossings. Returns the
+-- number of crossings.
 function steps.loops(P, ctx)
   local C = ctx.curve
   if not closed(ctx) or P:dim() ~= 2 then return 0 end
-  local k = math.max(500, 16 * C:distinct())
+  local k = math.max(2000, 32 * C:distinct())
   local n, where = bs.geom.self_intersections(C, k)
-  local tries = 0
-  while n > 0 and not sharp_path(ctx) and tries < 3 and ctx.opts.count == nil do
-    local lo = select(1, count_range(P, ctx))
-    local fewer = math.max(lo, math.floor(0.8 * ctx.count))
-    if fewer >= ctx.count then break end
-    local C2, u, d = fit_corrected(ctx, P, fewer, ctx.sub and 1 or ctx.settings.correct)
-    local n2, w2 = bs.geom.self_intersections(C2, k)
-    tries = tries + 1
-    ctx.count = fewer
-    if n2 < n or n2 == 0 then
-      C, n, where = C2, n2, w2
-      ctx.curve, ctx.params_final, ctx.distances, ctx.distances_of = C2, u, d, C2
+  if n > 0 and not sharp_path(ctx) and ctx.opts.count == nil then
+    local lo, hi = count_range(P, ctx)
+    local tried = { [ctx.count] = true }
+    for _, f in ipairs { 0.8, 0.64, 0.51, 1.25, 1.56 } do
+      local c = math.max(lo, math.min(hi, math.floor(f * ctx.count + 0.5)))
+      if not tried[c] then
+        tried[c] = true
+        local C2, u, d, N = fit_corrected(ctx, P, c, ctx.sub and 1 or ctx.settings.correct)
+        local n2, w2 = bs.geom.self_intersections(C2, k)
+        if n2 < n then
+          C, n, where = C2, n2, w2
+          ctx.curve, ctx.params_final, ctx.distances, ctx.distances_of = C2, u, d, C2
+          ctx.count = N
+        end
+        if n == 0 then break end
+      end
     end
   end
+  if n > 0 and not sharp_path(ctx) and ctx.sharp_candidate then n = loop_free_pieces(P, ctx, k) or n end
+  if n > 0 and not sharp_path(ctx) then n = without_corners(P, ctx) or n end
   if n > 0 then
     warn(ctx, ("the curve crosses itself (%d crossing%s, first near parameter %.4g)"):format(
       n, n == 1 and "" or "s", where))
