@@ -210,7 +210,8 @@ end)
 -- The noisy sweep: every outline at 6 and 10 samples per side, noise 1e-4 and 1e-3 of
 -- the size, two seeds. Sections whose pieces the auto strategy trusts (rep.pieces) are
 -- held to the issue's numbers; every section to no self-intersection; the share taken
--- through the pieces is reported and must not fall.
+-- through the pieces is reported and must not fall (test_sharp_noisy.lua: the sparse
+-- and uneven sweep, every section measured).
 T.test("noisy sections of lines and arcs: Hausdorff < 3 sigma + 1e-3, corners within a sample, radii 2%", function()
   local sharp_n, total = 0, 0
   for _, name in ipairs(NAMES) do
@@ -253,7 +254,9 @@ T.test("noisy sections of lines and arcs: Hausdorff < 3 sigma + 1e-3, corners wi
     end
   end
   print(("# noisy sweep: %d of %d sections through the pieces"):format(sharp_n, total))
-  T.ok(sharp_n >= 0.35 * total, ("only %d of %d noisy sections through the pieces"):format(sharp_n, total))
+  -- 39 of 104 before the distances to the pieces' curve were found from inside each piece
+  -- (a foot point stalled at a corner read 126 sigma for 2.7), 69 since
+  T.ok(sharp_n >= 0.6 * total, ("only %d of %d noisy sections through the pieces"):format(sharp_n, total))
 end)
 
 T.test("open or closed from the data: every generated case decided right, both overrides honoured", function()

@@ -204,6 +204,20 @@ T.test("smooth shapes: no corner, no loop (24 to 200 points, noise 0 to 1e-2, ev
   T.ok(#false_corners <= 1, #false_corners .. " smooth sections with a corner")
 end)
 
+T.test("pieces that cannot make one curve keep the smooth path (a noisy cam raised in bs.curve.join)", function()
+  -- 80 samples of the cam at noise 1e-2: segmented into one arc gone all the way round and a
+  -- line of no length between its ends
+  local P = synth.noisy(synth.sample_smooth(SMOOTH.cam, 80, false), 0.025, 1)
+  local ok, C, rep = pcall(auto.run, P)
+  T.ok(ok, tostring(ok or C))
+  T.ok(ok and rep.pieces == nil and C:is_periodic(), "one smooth closed curve")
+  local sharp = require "bsfit.strategy.sharp"
+  T.ok(sharp.degenerate { { kind = "arc", start = { 1, 0 }, ["end"] = { 1, 0 }, radius = 1, sweep = 2 * math.pi },
+                          { kind = "line", start = { 1, 0 }, ["end"] = { 1, 0 } } } ~= nil)
+  T.eq(sharp.degenerate { { kind = "line", start = { 0, 0 }, ["end"] = { 1, 0 } },
+                          { kind = "line", start = { 1, 0 }, ["end"] = { 0, 0 } } }, nil)
+end)
+
 T.test("an airfoil: corners only at its sharp trailing edge, none at the leading edge", function()
   for _, m in ipairs { 24, 40, 80, 200 } do
     for j, rel in ipairs { 0, 1e-4, 1e-3, 3e-3 } do
