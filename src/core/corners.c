@@ -317,136 +317,154 @@ static int turn_peak(const contour *c, const double *turn, size_t k, size_t r) {
   return 1;
 }
 
+/* Checks the options and the points, and finds sigma when the caller did not give it. */
+static bsfit_err check_input(const double *pts, size_t m, int dim, const bsfit_corner_opts *o,
+                             double *sigma, bsfit_status *st) {
+  if (o->scale < 0 || !isfinite(o->scale) || !isfinite(o->sigma) || o->min_angle_deg < 0 ||
+      o->min_angle_deg >= 180 || !isfinite(o->min_angle_deg))
+    return bsfit__fail(st, BSFIT_EINVAL,
+                       "corner options: scale %g, sigma %g, min_angle_deg %g out of range",
+                       o->scale, o->sigma, o->min_angle_deg);
+  *sigma = o->sigma;
+  if (*sigma <= 0) return bsfit_noise_sigma(pts, m, dim, o->closed, sigma, NULL, st);
+  if (dim != 2 && dim != 3)
+    return bsfit__fail(st, BSFIT_EDIM, "corner detection needs 2D or 3D points, got dim %d", dim);
+  if (pts == NULL || m < 6)
+    return bsfit__fail(st, BSFIT_ETOOFEW, "corner detection needs at least 6 points, got %zu", m);
+  if (!bsfit__all_finite(pts, m * (size_t)dim))
+    return bsfit__fail(st, BSFIT_ENONFINITE, "points contain NaN or Inf");
+  return BSFIT_OK;
+}
+
+/* The detector's settings and scratch (through the caller's allocator). */
+typedef struct detector {
+  double sigma, scale, min_angle, reach_cap;
+  double *turn;         /* the quick turn of every sample (-1: cannot be a corner) */
+  size_t *span;         /* how far a peak of it rules: its shorter side */
+  size_t *queue, nq;    /* the samples to examine */
+  unsigned char *state; /* 1 once queued as a peak's, 2 as found by another's examination */
+  candidate *cand;
+  size_t nc;
+} detector;
+
+static int detector_alloc(detector *d, size_t m, const bsfit_allocator *al) {
+  memset(d, 0, sizeof *d);
+  d->cand = bsfit__alloc(al, m * sizeof(candidate));
+  d->turn = bsfit__alloc(al, m * sizeof(double));
+  d->span = bsfit__alloc(al, m * sizeof(size_t));
+  d->queue = bsfit__alloc(al, m * sizeof(size_t));
+  d->state = bsfit__alloc(al, m);
+  if (d->state) memset(d->state, 0, m);
+  return d->cand && d->turn && d->span && d->queue && d->state;
+}
+
+static void detector_free(detector *d, size_t m, const bsfit_allocator *al) {
+  bsfit__free(al, d->cand, m * sizeof(candidate));
+  bsfit__free(al, d->turn, m * sizeof(double));
+  bsfit__free(al, d->span, m * sizeof(size_t));
+  bsfit__free(al, d->queue, m * sizeof(size_t));
+  bsfit__free(al, d->state, m);
+}
+
+/* queues the samples around `centre` not queued yet, marking them `mark` */
+static void queue_around(const contour *c, detector *d, long centre, unsigned char mark) {
+  long off;
+  for (off = -1; off <= 1; off++) {
+    size_t j;
+    if (!c->closed && (centre + off < 0 || centre + off >= (long)c->m)) continue;
+    j = at(c, (size_t)(centre < 0 ? 0 : centre) % c->m, off);
+    if (!d->state[j]) d->state[j] = mark, d->queue[d->nq++] = j;
+  }
+}
+
+/* The quick turn of every sample and the peaks of it, queued with their neighbours. */
+static bsfit_err queue_peaks(const contour *c, detector *d, const bsfit_allocator *al) {
+  window reach = {0, 0};
+  size_t k;
+  for (k = 0; k < c->m; k++) {
+    if ((k & 4095) == 4095 && bsfit__interrupted(al)) return BSFIT_EINTR;
+    d->turn[k] = quick_candidate(c, k, d->scale, d->sigma, d->min_angle, &reach);
+    d->span[k] = reach.back < reach.fwd ? reach.back : reach.fwd;
+  }
+  for (k = 0; k < c->m; k++)
+    if (d->turn[k] >= 0 && turn_peak(c, d->turn, k, d->span[k] / 4 > 1 ? d->span[k] / 4 : 1))
+      queue_around(c, d, (long)k, 1);
+  return BSFIT_OK;
+}
+
+/* The queued samples examined, each at most once; where one finds the corner elsewhere (a
+** peak leans towards a curved side, whose turn adds to the corner's), the samples around
+** that place are examined too, and must then find the corner at themselves. */
+static bsfit_err examine_queue(const contour *c, detector *d, const bsfit_allocator *al) {
+  while (d->nq > 0) {
+    size_t from, to, kk = d->queue[--d->nq];
+    double gap = 0, pos = (double)kk, x[3] = {0, 0, 0}, a, moved;
+    int second = d->state[kk] == 2;
+    if ((d->nq & 255) == 0 && bsfit__interrupted(al)) return BSFIT_EINTR;
+    a = corner_turn(c, kk, d->scale, d->sigma, d->min_angle, d->reach_cap, &from, &to, &gap, &pos,
+                    x);
+    moved = fabs(pos - (double)kk);
+    if (c->closed) moved = fmin(moved, (double)c->m - moved);
+    if (second && moved >= 1.5) a = -1.0;
+    if (moved >= 1.5 && !second) queue_around(c, d, (long)floor(pos + 0.5), 2);
+    if (a >= 0) {
+      candidate *cd = &d->cand[d->nc++];
+      cd->k = kk, cd->from = from, cd->to = to;
+      cd->angle = a, cd->gap = gap, cd->position = pos;
+      memcpy(cd->point, x, sizeof x);
+    }
+  }
+  return BSFIT_OK;
+}
+
 bsfit_err bsfit_corners_detect(const double *pts, size_t m, int dim,
                                const bsfit_corner_opts *opts, bsfit_corner *corners,
                                size_t cap, size_t *count, const bsfit_allocator *al,
                                bsfit_status *st) {
   contour c;
-  candidate *cand;
-  double sigma, scale, spacing, min_angle, reach_cap, *scratch;
-  size_t k, nc = 0, nq = 0, kept, bytes_prefix, bytes_cand, *span = NULL, *queue = NULL;
-  unsigned char *state = NULL;
-  window reach = {0, 0};
+  detector d;
+  size_t k, kept, bytes_prefix = (m + 1) * 10 * sizeof(double);
   bsfit_corner_opts o;
   bsfit_err e;
   memset(&o, 0, sizeof o);
   if (opts) o = *opts;
   *count = 0;
-  if (o.scale < 0 || !isfinite(o.scale) || !isfinite(o.sigma) || o.min_angle_deg < 0 ||
-      o.min_angle_deg >= 180 || !isfinite(o.min_angle_deg))
-    return bsfit__fail(st, BSFIT_EINVAL,
-                       "corner options: scale %g, sigma %g, min_angle_deg %g out of range",
-                       o.scale, o.sigma, o.min_angle_deg);
-  sigma = o.sigma;
-  if (sigma <= 0) {
-    e = bsfit_noise_sigma(pts, m, dim, o.closed, &sigma, NULL, st);
-    if (e != BSFIT_OK) return e;
-  } else if (dim != 2 && dim != 3) {
-    return bsfit__fail(st, BSFIT_EDIM, "corner detection needs 2D or 3D points, got dim %d", dim);
-  } else if (pts == NULL || m < 6) {
-    return bsfit__fail(st, BSFIT_ETOOFEW, "corner detection needs at least 6 points, got %zu", m);
-  } else if (!bsfit__all_finite(pts, m * (size_t)dim)) {
-    return bsfit__fail(st, BSFIT_ENONFINITE, "points contain NaN or Inf");
-  }
+  if ((e = check_input(pts, m, dim, &o, &d.sigma, st)) != BSFIT_OK) return e;
   memset(&c, 0, sizeof c);
-  c.pts = pts;
-  c.m = m;
-  c.dim = dim;
-  c.closed = o.closed != 0;
+  c.pts = pts, c.m = m, c.dim = dim, c.closed = o.closed != 0;
   memcpy(c.origin, pts, (size_t)dim * sizeof(double));
-  bytes_prefix = (m + 1) * 10 * sizeof(double);
-  bytes_cand = m * sizeof(candidate);
   c.prefix = bsfit__alloc(al, bytes_prefix);
-  cand = bsfit__alloc(al, bytes_cand);
-  scratch = bsfit__alloc(al, m * sizeof(double));
-  span = bsfit__alloc(al, m * sizeof(size_t));
-  queue = bsfit__alloc(al, m * sizeof(size_t));
-  state = bsfit__alloc(al, m);
-  if (c.prefix == NULL || cand == NULL || scratch == NULL || span == NULL || queue == NULL ||
-      state == NULL) {
-    e = bsfit__fail(st, BSFIT_ENOMEM, "out of memory for corner detection of %zu points", m);
+  {
+    double sigma = d.sigma;
+    if (!detector_alloc(&d, m, al) || c.prefix == NULL) {
+      e = bsfit__fail(st, BSFIT_ENOMEM, "out of memory for corner detection of %zu points", m);
+      goto done;
+    }
+    d.sigma = sigma;
+  }
+  bsfit__corner_build_prefix(&c);
+  d.reach_cap = 0.4 * bbox_diagonal(&c);
+  d.scale = o.scale > 0 ? o.scale
+                        : fmin(fmax(40.0 * d.sigma, 4.0 * median_spacing(&c, d.turn)),
+                               0.25 * d.reach_cap);
+  d.min_angle = (o.min_angle_deg > 0 ? o.min_angle_deg : 30.0) * PI / 180.0;
+  if ((e = queue_peaks(&c, &d, al)) != BSFIT_OK || (e = examine_queue(&c, &d, al)) != BSFIT_OK) {
+    e = bsfit__fail(st, e, "corner detection interrupted");
     goto done;
   }
-  memset(state, 0, m);
-  bsfit__corner_build_prefix(&c);
-  spacing = median_spacing(&c, scratch);
-  reach_cap = 0.4 * bbox_diagonal(&c);
-  scale = o.scale > 0 ? o.scale : fmin(fmax(40.0 * sigma, 4.0 * spacing), 0.25 * reach_cap);
-  min_angle = (o.min_angle_deg > 0 ? o.min_angle_deg : 30.0) * PI / 180.0;
-  /* the quick turn of every sample (scratch: -1 where it cannot be a corner), and how
-  ** far a peak of it rules: a quarter of its shorter side */
-  for (k = 0; k < m; k++) {
-    if ((k & 4095) == 4095 && bsfit__interrupted(al)) {
-      e = bsfit__fail(st, BSFIT_EINTR, "corner detection interrupted");
-      goto done;
-    }
-    scratch[k] = quick_candidate(&c, k, scale, sigma, min_angle, &reach);
-    span[k] = reach.back < reach.fwd ? reach.back : reach.fwd;
-  }
-  /* The peaks and their neighbours are examined; where one finds the corner elsewhere
-  ** (a peak leans towards a curved side, whose turn adds to the corner's), the samples
-  ** around that place are examined too. Each sample at most once: queue holds the
-  ** samples to examine, state[k] is 1 once queued as a peak's, 2 as found by another
-  ** (such a sample must then find the corner at itself). */
-  for (k = 0; k < m; k++) {
-    long off;
-    if (scratch[k] < 0 || !turn_peak(&c, scratch, k, span[k] / 4 > 1 ? span[k] / 4 : 1)) continue;
-    for (off = -1; off <= 1; off++) {
-      size_t j;
-      if (!c.closed && ((long)k + off < 0 || (long)k + off >= (long)m)) continue;
-      j = at(&c, k, off);
-      if (!state[j]) state[j] = 1, queue[nq++] = j;
-    }
-  }
-  while (nq > 0) {
-    size_t from, to, kk = queue[--nq];
-    double gap = 0, pos = (double)kk, x[3] = {0, 0, 0}, a, moved;
-    int second = state[kk] == 2; /* queued from another's finding: must find itself */
-    if ((nq & 255) == 0 && bsfit__interrupted(al)) {
-      e = bsfit__fail(st, BSFIT_EINTR, "corner detection interrupted");
-      goto done;
-    }
-    a = corner_turn(&c, kk, scale, sigma, min_angle, reach_cap, &from, &to, &gap, &pos, x);
-    moved = fabs(pos - (double)kk);
-    if (c.closed) moved = fmin(moved, (double)m - moved);
-    if (second && moved >= 1.5) a = -1.0;
-    if (moved >= 1.5 && !second) {
-      long off, near = (long)floor(pos + 0.5);
-      for (off = -1; off <= 1; off++) {
-        size_t j;
-        if (!c.closed && (near + off < 0 || near + off >= (long)m)) continue;
-        j = at(&c, (size_t)(near < 0 ? 0 : near) % m, off);
-        if (!state[j]) state[j] = 2, queue[nq++] = j;
-      }
-    }
-    if (a >= 0) {
-      cand[nc].k = kk;
-      cand[nc].from = from;
-      cand[nc].to = to;
-      cand[nc].angle = a;
-      cand[nc].gap = gap;
-      cand[nc].position = pos;
-      memcpy(cand[nc].point, x, sizeof x);
-      nc++;
-    }
-  }
-  kept = thin_candidates(cand, nc, m);
+  kept = thin_candidates(d.cand, d.nc, m);
   for (k = 0; k < kept && k < cap; k++) {
     /* the sample nearest to where the corner lies */
-    size_t near = (size_t)floor(cand[k].position + 0.5);
+    size_t near = (size_t)floor(d.cand[k].position + 0.5);
     corners[k].index = near >= m ? near - m : near;
-    corners[k].angle = cand[k].angle * 180.0 / PI;
-    corners[k].position = cand[k].position;
-    memcpy(corners[k].point, cand[k].point, sizeof cand[k].point);
+    corners[k].angle = d.cand[k].angle * 180.0 / PI;
+    corners[k].position = d.cand[k].position;
+    memcpy(corners[k].point, d.cand[k].point, sizeof d.cand[k].point);
   }
   *count = kept;
   e = bsfit__ok(st);
 done:
   bsfit__free(al, c.prefix, bytes_prefix);
-  bsfit__free(al, cand, bytes_cand);
-  bsfit__free(al, scratch, m * sizeof(double));
-  bsfit__free(al, span, m * sizeof(size_t));
-  bsfit__free(al, queue, m * sizeof(size_t));
-  bsfit__free(al, state, m);
+  detector_free(&d, m, al);
   return e;
 }
