@@ -65,6 +65,71 @@ static void clamp_to_tip(const contour *c, size_t k, const side *left, const sid
     for (d = 0; d < c->dim; d++) x[d] += top * axis[d];
 }
 
+/* A spike (a turn beyond 120 degrees): its tip is the sample furthest along the spike's
+** axis. Where the samples there are closer than the noise, all those within 2 sigma of the
+** furthest are the tip, and the corner is their mean position (the tip of a thin trailing
+** edge cut at random would make the curve cross over). Offsets lo..hi around k. */
+static double spike_tip(const contour *c, size_t k, const side *left, const side *right,
+                        const double *x, double sigma, long lo, long hi) {
+  double axis[3], na = 0, top = -INFINITY, sum = 0, cnt = 0, proj[256], pos;
+  long off;
+  int d;
+  for (d = 0; d < 3; d++) {
+    axis[d] = left->dir[d] - right->dir[d];
+    na += axis[d] * axis[d];
+  }
+  na = sqrt(na);
+  for (off = lo; off <= hi; off++) {
+    const double *P = point(c, at(c, k, off));
+    double pr = 0;
+    for (d = 0; d < c->dim; d++) pr += (P[d] - x[d]) * axis[d] / na;
+    proj[off - lo] = pr;
+    if (pr > top) top = pr;
+  }
+  for (off = lo; off <= hi; off++)
+    if (proj[off - lo] >= top - 2.0 * sigma - 1e-12 * fabs(top)) sum += (double)off, cnt += 1.0;
+  pos = (double)k + sum / cnt;
+  if (pos < 0) pos += (double)c->m;
+  if (pos >= (double)c->m) pos -= (double)c->m;
+  if (!c->closed) pos = fmin(fmax(pos, 0.0), (double)(c->m - 1));
+  return pos;
+}
+
+/* squared distance of P to a side's line */
+static double side_dist2(const contour *c, const side *sd, const double *P) {
+  double along = 0, n2 = 0;
+  int d;
+  for (d = 0; d < c->dim; d++) along += (P[d] - sd->centre[d]) * sd->dir[d];
+  for (d = 0; d < c->dim; d++) {
+    double r = P[d] - sd->centre[d] - along * sd->dir[d];
+    n2 += r * r;
+  }
+  return n2;
+}
+
+/* The best split between the sides: cost(split after sample k + off) = the sum over the
+** samples up to it of dL^2 - dR^2 (plus a constant). Samples nearer to the corner than
+** the noise resolves fit either line: of the splits within 4 sigma^2 of the best, the
+** middle one (a thin spike's samples near its tip would otherwise be cut at random, and
+** the curve made to cross over). Returns the offset of the last sample before it. */
+static long best_split(const contour *c, size_t k, const side *left, const side *right,
+                       double sigma, long lo, long hi) {
+  double acc = 0, best = INFINITY, cost[256];
+  long off, best_off = -1, n, first = 0, last = 0;
+  for (off = lo; off <= hi; off++) {
+    const double *P = point(c, at(c, k, off));
+    acc += side_dist2(c, left, P) - side_dist2(c, right, P);
+    cost[off - lo] = acc;
+    if (acc < best) best = acc, best_off = off;
+  }
+  for (n = 0, off = lo; off <= hi; off++)
+    if (cost[off - lo] <= best + 4.0 * sigma * sigma) {
+      if (n++ == 0) first = off;
+      last = off;
+    }
+  return n > 0 ? first + (last - first) / 2 : best_off;
+}
+
 /* Where along the samples the corner lies: the split of the samples around k (half of
 ** each side) between the two side lines that leaves the least squared distance to
 ** them (samples up to the split on the left line, the others on the right one), then
@@ -73,13 +138,11 @@ static void clamp_to_tip(const contour *c, size_t k, const side *left, const sid
 ** simply the sample nearest to x. */
 static double split_position(const contour *c, size_t k, const side *left, const side *right,
                              const double *x, double sigma, double turn) {
-  long lo = -(long)(left->count / 2), hi = (long)(right->count / 2), off, best_off = -1, n;
-  long first = 0, last = 0;
-  double acc = 0, best = INFINITY, cost[256];
+  long lo = -(long)(left->count / 2), hi = (long)(right->count / 2);
   size_t j;
   const double *a, *b;
   double da = 0, db = 0, f, pos;
-  int d, s;
+  int d;
   if (!c->closed) {
     if ((long)k + lo < 0) lo = -(long)k;
     if ((long)k + hi + 1 >= (long)c->m) hi = (long)c->m - 2 - (long)k;
@@ -87,60 +150,8 @@ static double split_position(const contour *c, size_t k, const side *left, const
   if (hi <= lo) return (double)k;
   if (-lo > 127) lo = -127;
   if (hi > 127) hi = 127;
-  if (turn > 2.0 * PI / 3.0) {
-    /* A spike: its tip is the sample furthest along the spike's axis. Where the samples
-    ** there are closer than the noise, all those within 2 sigma of the furthest are
-    ** the tip, and the corner is their mean position (the tip of a thin trailing edge
-    ** cut at random would make the curve cross over). */
-    double axis[3], na = 0, top = -INFINITY, sum = 0, cnt = 0, proj[256];
-    for (d = 0; d < 3; d++) {
-      axis[d] = left->dir[d] - right->dir[d];
-      na += axis[d] * axis[d];
-    }
-    na = sqrt(na);
-    for (off = lo; off <= hi; off++) {
-      const double *P = point(c, at(c, k, off));
-      double pr = 0;
-      for (d = 0; d < c->dim; d++) pr += (P[d] - x[d]) * axis[d] / na;
-      proj[off - lo] = pr;
-      if (pr > top) top = pr;
-    }
-    for (off = lo; off <= hi; off++)
-      if (proj[off - lo] >= top - 2.0 * sigma - 1e-12 * fabs(top)) sum += (double)off, cnt += 1.0;
-    pos = (double)k + sum / cnt;
-    if (pos < 0) pos += (double)c->m;
-    if (pos >= (double)c->m) pos -= (double)c->m;
-    if (!c->closed) pos = fmin(fmax(pos, 0.0), (double)(c->m - 1));
-    return pos;
-  }
-  /* cost(split after sample k + off) = sum over samples up to it of dL^2 - dR^2 + const */
-  for (off = lo; off <= hi; off++) {
-    const double *P = point(c, at(c, k, off));
-    double e2[2] = {0, 0};
-    for (s = 0; s < 2; s++) {
-      const side *sd = s == 0 ? left : right;
-      double along = 0, n2 = 0;
-      for (d = 0; d < c->dim; d++) along += (P[d] - sd->centre[d]) * sd->dir[d];
-      for (d = 0; d < c->dim; d++) {
-        double r = P[d] - sd->centre[d] - along * sd->dir[d];
-        n2 += r * r;
-      }
-      e2[s] = n2;
-    }
-    acc += e2[0] - e2[1];
-    cost[off - lo] = acc;
-    if (acc < best) best = acc, best_off = off;
-  }
-  /* Samples nearer to the corner than the noise resolves fit either line: of the
-  ** splits within 4 sigma^2 of the best, the middle one (a thin spike's samples near
-  ** its tip would otherwise be cut at random, and the curve made to cross over). */
-  for (n = 0, off = lo; off <= hi; off++)
-    if (cost[off - lo] <= best + 4.0 * sigma * sigma) {
-      if (n++ == 0) first = off;
-      last = off;
-    }
-  if (n > 0) best_off = first + (last - first) / 2;
-  j = at(c, k, best_off);
+  if (turn > 2.0 * PI / 3.0) return spike_tip(c, k, left, right, x, sigma, lo, hi);
+  j = at(c, k, best_split(c, k, left, right, sigma, lo, hi));
   a = point(c, j);
   b = point(c, j + 1);
   for (d = 0; d < c->dim; d++) {
