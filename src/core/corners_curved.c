@@ -45,12 +45,10 @@ static void chol_solve3(double L[3][3], double *b) {
   }
 }
 
-/* Fits the parabola of side sd (its count points, k excluded); 0 when it cannot. */
-int bsfit__corner_fit_parabola(const contour *c, const side *sd, parabola *pb) {
-  double A[3][3] = {{0}}, rhs[2][3] = {{0}}, sbb[2] = {0, 0}, A4[5][5] = {{0}}, rhs4[2][5] = {{0}};
-  size_t i, j = sd->k;
-  int d, p, q, e;
-  if (sd->count < 4 || !(sd->extent > 0)) return 0;
+/* The frame of a side's parabola: its line's centre and direction, and the normals
+** (2D: the left normal; 3D: n1 = axis x the coordinate axis least along it, n2 = axis x n1) */
+static void parabola_frame(const contour *c, const side *sd, parabola *pb) {
+  int d;
   memset(pb, 0, sizeof *pb);
   memcpy(pb->origin, sd->centre, sizeof pb->origin);
   memcpy(pb->axis, sd->dir, sizeof pb->axis);
@@ -59,7 +57,7 @@ int bsfit__corner_fit_parabola(const contour *c, const side *sd, parabola *pb) {
   if (c->dim == 2) {
     pb->normal[0][0] = -sd->dir[1];
     pb->normal[0][1] = sd->dir[0];
-  } else { /* n1 = axis x (the coordinate axis least along it), n2 = axis x n1 */
+  } else {
     double ex[3] = {0, 0, 0}, *u = pb->axis, *n1 = pb->normal[0], *n2 = pb->normal[1], nrm;
     int low = 0;
     for (d = 1; d < 3; d++)
@@ -74,55 +72,76 @@ int bsfit__corner_fit_parabola(const contour *c, const side *sd, parabola *pb) {
     n2[1] = u[2] * n1[0] - u[0] * n1[2];
     n2[2] = u[0] * n1[1] - u[1] * n1[0];
   }
+}
+
+/* the normal equations of the side's samples, for the parabola (A, rhs) and the cubic
+** (A4, rhs4) across each normal; sbb the sums of squares of the offsets */
+typedef struct side_sums {
+  double A[3][3], rhs[2][3], sbb[2], A4[5][5], rhs4[2][5];
+} side_sums;
+
+static void side_normal_equations(const contour *c, const side *sd, const parabola *pb,
+                                  side_sums *S) {
+  size_t i, j = sd->k;
+  int d, p, q, e;
+  memset(S, 0, sizeof *S);
   for (i = 0; i < sd->count; i++) {
     const double *P;
     double a = 0, x[4];
     j = step(c, j, sd->forward);
     P = point(c, j);
     for (d = 0; d < c->dim; d++) a += (P[d] - pb->origin[d]) * pb->axis[d];
-    x[0] = 1.0;
-    x[1] = a / pb->len;
-    x[2] = x[1] * x[1];
+    x[0] = 1.0, x[1] = a / pb->len, x[2] = x[1] * x[1], x[3] = x[2] * x[1];
     for (p = 0; p < 3; p++)
-      for (q = 0; q <= p; q++) A[p][q] += x[p] * x[q];
-    x[3] = x[2] * x[1];
+      for (q = 0; q <= p; q++) S->A[p][q] += x[p] * x[q];
     for (p = 0; p < 4; p++)
-      for (q = 0; q < 4; q++) A4[p][q] += x[p] * x[q];
+      for (q = 0; q < 4; q++) S->A4[p][q] += x[p] * x[q];
     for (e = 0; e < pb->nn; e++) {
       double b = 0;
       for (d = 0; d < c->dim; d++) b += (P[d] - pb->origin[d]) * pb->normal[e][d];
-      for (p = 0; p < 3; p++) rhs[e][p] += x[p] * b;
-      for (p = 0; p < 4; p++) rhs4[e][p] += x[p] * b;
-      sbb[e] += b * b;
+      for (p = 0; p < 3; p++) S->rhs[e][p] += x[p] * b;
+      for (p = 0; p < 4; p++) S->rhs4[e][p] += x[p] * b;
+      S->sbb[e] += b * b;
     }
   }
   for (p = 0; p < 3; p++)
-    for (q = p + 1; q < 3; q++) A[p][q] = A[q][p];
-  if (!cholesky3(A)) return 0;
-  {
-    double rss = 0;
-    for (e = 0; e < pb->nn; e++) {
-      double sol[3];
-      memcpy(sol, rhs[e], sizeof sol);
-      chol_solve3(A, sol);
-      memcpy(pb->coef[e], sol, sizeof sol);
-      rss += sbb[e] - (sol[0] * rhs[e][0] + sol[1] * rhs[e][1] + sol[2] * rhs[e][2]);
-    }
-    pb->rms = sqrt(fmax(rss, 0.0) / (double)sd->count);
-    pb->rss_cubic = rss;
-    if (sd->count >= 5) {
-      double r3 = 0;
-      for (e = 0; e < pb->nn; e++) {
-        double M[5][5], sol[5];
-        memcpy(M, A4, sizeof M);
-        memcpy(sol, rhs4[e], sizeof sol);
-        if (!bsfit__corner_solve_spd(4, M, sol)) { r3 = rss; break; }
-        r3 += sbb[e] - (sol[0] * rhs4[e][0] + sol[1] * rhs4[e][1] + sol[2] * rhs4[e][2] +
-                        sol[3] * rhs4[e][3]);
-      }
-      pb->rss_cubic = fmax(fmin(r3, rss), 0.0);
-    }
+    for (q = p + 1; q < 3; q++) S->A[p][q] = S->A[q][p];
+}
+
+/* the residual sum of squares of a cubic across the side instead (rss: the parabola's;
+** kept when the cubic's system is singular) */
+static double cubic_rss(const parabola *pb, side_sums *S, double rss) {
+  double r3 = 0;
+  int e;
+  for (e = 0; e < pb->nn; e++) {
+    double M[5][5], sol[5];
+    memcpy(M, S->A4, sizeof M);
+    memcpy(sol, S->rhs4[e], sizeof sol);
+    if (!bsfit__corner_solve_spd(4, M, sol)) return fmax(rss, 0.0);
+    r3 += S->sbb[e] - (sol[0] * S->rhs4[e][0] + sol[1] * S->rhs4[e][1] +
+                       sol[2] * S->rhs4[e][2] + sol[3] * S->rhs4[e][3]);
   }
+  return fmax(fmin(r3, rss), 0.0);
+}
+
+/* Fits the parabola of side sd (its count points, k excluded); 0 when it cannot. */
+int bsfit__corner_fit_parabola(const contour *c, const side *sd, parabola *pb) {
+  side_sums S;
+  double rss = 0;
+  int e;
+  if (sd->count < 4 || !(sd->extent > 0)) return 0;
+  parabola_frame(c, sd, pb);
+  side_normal_equations(c, sd, pb, &S);
+  if (!cholesky3(S.A)) return 0;
+  for (e = 0; e < pb->nn; e++) {
+    double sol[3];
+    memcpy(sol, S.rhs[e], sizeof sol);
+    chol_solve3(S.A, sol);
+    memcpy(pb->coef[e], sol, sizeof sol);
+    rss += S.sbb[e] - (sol[0] * S.rhs[e][0] + sol[1] * S.rhs[e][1] + sol[2] * S.rhs[e][2]);
+  }
+  pb->rms = sqrt(fmax(rss, 0.0) / (double)sd->count);
+  pb->rss_cubic = sd->count >= 5 ? cubic_rss(pb, &S, rss) : rss;
   return 1;
 }
 
