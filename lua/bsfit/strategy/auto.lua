@@ -470,6 +470,21 @@ function steps.weights(P, ctx)
   return pw
 end
 
+-- Corners found on the subsample of a large section (idx: its 1-based indices, tt their
+-- turns): placed at its points (the chords across are negligible there).
+local function subsample_corners(P, ctx, sub, idx, tt)
+  local full, forced, order = {}, {}, {}
+  for i, k in ipairs(idx) do full[i] = (k - 1) * sub.stride + 1; forced[full[i]] = true; order[i] = i end
+  table.sort(order, function(a, b) return full[a] < full[b] end)
+  ctx.corner_turns = {}
+  for i, k in ipairs(order) do ctx.corner_turns[i] = tt[k] end
+  table.sort(full)
+  ctx.corner_positions = full
+  if ctx.anchors then ctx.params = anchors.params(P, ctx, forced, sub) or ctx.params end
+  anchors.knots(ctx, full)
+  return full
+end
+
 function steps.corners(P, ctx)
   if sharp_path(ctx) then return sharp.corner_samples(P, ctx.segment) end
   if not closed(ctx) or #P < 12 then anchors.knots(ctx); return {} end
@@ -481,19 +496,7 @@ function steps.corners(P, ctx)
   if #idx == 0 then anchors.knots(ctx); return {} end
   local m = #P
   local tt = turns:totable()
-  if sub then
-    -- found on the subsample: at its points (the chords across are negligible there)
-    local full, forced, order = {}, {}, {}
-    for i, k in ipairs(idx) do full[i] = (k - 1) * sub.stride + 1; forced[full[i]] = true; order[i] = i end
-    table.sort(order, function(a, b) return full[a] < full[b] end)
-    ctx.corner_turns = {}
-    for i, k in ipairs(order) do ctx.corner_turns[i] = tt[k] end
-    table.sort(full)
-    ctx.corner_positions = full
-    if ctx.anchors then ctx.params = anchors.params(P, ctx, forced, subsample(ctx, P)) or ctx.params end
-    anchors.knots(ctx, full)
-    return full
-  end
+  if sub then return subsample_corners(P, ctx, sub, idx, tt) end
   -- positions in increasing order (the first corner's may wrap to just below m + 1),
   -- with their corner points, so the parameters can be made to agree with them
   local order, pos, pts = {}, where:totable(), at:totable()
