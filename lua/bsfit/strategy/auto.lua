@@ -191,7 +191,7 @@ local function knots_for(ctx, n)
   if closed(ctx) then
     n = math.max(n, #ctx.corners * p + 1) -- each corner takes p knots
     local breaks = ctx.knot_breaks or ctx.corner_positions or ctx.corners
-    if #breaks == 0 and #u < 12 then
+    if #breaks == 0 and #u >= 6 and #u < 12 then
       -- a handful of points without corners (6 samples of a D): the averaging rule
       -- around the period (the break placement's empty-span guard needs more points)
       return common.ok("knots", bs.knots.averaging { params = u, count = n, degree = p,
@@ -324,6 +324,9 @@ local function noisy_pieces(P, ctx)
                                                                       max = AGREE * ctx.sigma }))
   if not (s > 0 and s < AGREE * ctx.sigma) then return nil, ("noise of the pieces %.3g, of windows %.3g"):format(s, ctx.sigma) end
   local pieces = common.ok("segmentation", bs.geom.segment(P, { closed = closed(ctx), sigma = s }))
+  -- one piece round a noisy section (a circle within the noise, a mesh's slice of a vase):
+  -- the smooth curve follows it as well, and stays polynomial
+  if #pieces < 2 then return nil, "one piece" end
   ctx.sharp_candidate = { pieces = pieces, sigma = s } -- for the loops step, if need be
   local held = 0
   for i, p in ipairs(pieces) do

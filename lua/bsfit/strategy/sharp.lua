@@ -253,6 +253,13 @@ function M.distances(C, P, pieces)
     end
   end
   for i = 1, m do u[i] = u[i] or a end
+  -- a repeated point starts where its first does: the same distance, to the last digit
+  local prev = { P:get(1) }
+  for i = 2, m do
+    local q = { P:get(i) }
+    if q[1] == prev[1] and q[2] == prev[2] then u[i] = u[i - 1] end
+    prev = q
+  end
   local _, d = C:project(P, bs.vector.new(u), 8)
   local _, g = C:closest_many(P)
   local t = {}
