@@ -36,7 +36,8 @@
 -- then m/3, at most 4000); optional: point_weights, tol.
 -- rep: count, sigma, corners (1-based indices), tries ({count, rms, max} per fit of the
 -- search), rms, max, max_index, residuals (distances), times per step, closed,
--- closed_ambiguous, crossings, pieces (when segmented), warnings.
+-- closed_ambiguous, crossings, pieces (when segmented), pieces_rejected (why a noisy section
+-- kept the smooth path), warnings.
 
 local bs = require "bsfit"
 local common = require "bsfit.strategy.common"
