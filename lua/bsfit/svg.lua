@@ -237,6 +237,22 @@ local function prepare(o)
   return d
 end
 
+-- How many corners (C0) and tangent joins (G1) the picture marks: with pieces that say how
+-- they join (rep.pieces: join, start), their joins (a join "corner" is a corner, "tangent"
+-- a G1 join between pieces); else the corner samples.
+local function with_joins(o)
+  return o.pieces and o.pieces[1] and o.pieces[1].join ~= nil and o.pieces[1].start ~= nil
+end
+
+local function join_counts(o)
+  if not with_joins(o) then return o.corners and #o.corners or 0, 0 end
+  local nc, nt = 0, 0
+  for _, pc in ipairs(o.pieces) do
+    if pc.join == "corner" then nc = nc + 1 elseif pc.join == "tangent" and #o.pieces > 1 then nt = nt + 1 end
+  end
+  return nc, nt
+end
+
 -- The legend's entries {symbol, label} for what the picture holds.
 local function legend_entries(o, d)
   local e = {}
@@ -257,9 +273,9 @@ local function legend_entries(o, d)
       e[#e + 1] = { "piece:" .. pc.kind, pc.kind .. " piece" }
     end
   end
-  if o.corners and #o.corners > 0 then
-    e[#e + 1] = { "corner", ("corner (%d)"):format(#o.corners) }
-  end
+  local nc, nt = join_counts(o)
+  if nc > 0 then e[#e + 1] = { "corner", ("corner, C0 (%d)"):format(nc) } end
+  if nt > 0 then e[#e + 1] = { "tangent", ("tangent join, G1 (%d)"):format(nt) } end
   if o.start_index then e[#e + 1] = { "start", "start point" } end
   if o.max_index then e[#e + 1] = { "max", "largest residual" } end
   return e
@@ -288,6 +304,9 @@ local function legend_symbol(f, kind, x, y)
     local h = f:px(5)
     return ('<polygon points="%s,%s %s,%s %s,%s %s,%s" fill="#000"/>'):format(
       X1, f:Y(y + h), f:X(x + f:px(11) + h), Y, X1, f:Y(y - h), f:X(x + f:px(11) - h), Y)
+  elseif kind == "tangent" then
+    return ('<circle cx="%s" cy="%s" r="%s" fill="#fff" stroke="#555" stroke-width="%s"/>')
+      :format(X1, Y, f:c(f:px(3)), f:c(f:px(1)))
   elseif kind == "start" then
     return ('<rect x="%s" y="%s" width="%s" height="%s" fill="none" stroke="#009e73" '
             .. 'stroke-width="%s"/>')
@@ -373,13 +392,28 @@ local function draw_points(f, o, d, out)
   out[#out + 1] = "</g>"
 end
 
--- Corners (black diamonds) and the start point (green square).
+-- Corners (black diamonds), tangent joins between pieces (small white rings: the curve is
+-- G1 there, not a corner) and the start point (green square). With pieces, the marks sit
+-- where the pieces meet (a corner may lie between samples); else on the corner samples.
 local function draw_marks(f, o, d, out)
   local P, h = o.points, f:px(5)
-  for _, i in ipairs(o.corners or {}) do
-    local x, y = d.to2(P:get(i))
+  local function diamond(x, y)
     out[#out + 1] = ('<polygon class="corner" points="%s,%s %s,%s %s,%s %s,%s" fill="#000"/>')
       :format(f:c(x), f:c(y + h), f:c(x + h), f:c(y), f:c(x), f:c(y - h), f:c(x - h), f:c(y))
+  end
+  if with_joins(o) then
+    for _, pc in ipairs(o.pieces) do
+      local x, y = pc.start[1], pc.start[2]
+      if pc.join == "corner" then
+        diamond(x, y)
+      elseif pc.join == "tangent" and #o.pieces > 1 then
+        out[#out + 1] = ('<circle class="tangent" cx="%s" cy="%s" r="%s" fill="#fff" '
+                         .. 'stroke="#555" stroke-width="%s"/>')
+          :format(f:c(x), f:c(y), f:c(f:px(3)), f:c(f:px(1)))
+      end
+    end
+  else
+    for _, i in ipairs(o.corners or {}) do diamond(d.to2(P:get(i))) end
   end
   if o.start_index then
     local x, y = d.to2(P:get(o.start_index))
@@ -461,7 +495,8 @@ end
 -- (per point, table or Vector), weights (file weights) and trust (0.1: the strategies'
 -- cut, trust x median), samples (Points on the curve), control (the distinct control
 -- points), polygon (true/false; default: drawn up to 60 control points), closed,
--- start_index, max_index and max, corners (indices), pieces ({kind, first, count}),
+-- start_index, max_index and max, corners (indices), pieces ({kind, first, count, join,
+-- start}: with pieces, corners and tangent joins are marked where the pieces meet),
 -- title, subtitle, size (pixels of the plot's longer side, 640), max_points (5000),
 -- max_samples (2000).
 function M.section(o)

@@ -22,6 +22,7 @@ typedef struct section {
   int closed;
   double tol;  /* a sample fits a model within tol */
   double unit; /* sigma: tol / tol_sigma (evidence is counted in unit^2) */
+  int noisy;   /* tol is set by sigma, not by the exact floor */
   size_t min_len[2];
   size_t *gaps; /* gaps[i]: how many of the steps j -> j+1, j < i (unwrapped, i <= 2m),
                    are longer than tol: a model needs that many distinct samples */
@@ -64,7 +65,8 @@ static double fit_model_from(const section *s, int kind, size_t first, size_t n,
     if (!bsfit__fit_line(&r, &md->line)) return HUGE_VAL;
     return bsfit__line_max(&md->line, &r, rms);
   }
-  if (!bsfit__fit_circle(&r, warm && warm->kind == ARC ? &warm->circle : NULL, &md->circle))
+  if (!bsfit__fit_circle(&r, warm && warm->kind == ARC ? &warm->circle : NULL, 1e-3 * s->tol,
+                         &md->circle))
     return HUGE_VAL;
   /* the direction the samples go round the centre */
   for (k = 0; k + 1 < n; k++) {
@@ -113,61 +115,89 @@ static int seed_misses(const section *s, int kind, size_t i, size_t n) {
     double tri[6] = {a[0], a[1], mid[0], mid[1], b[0], b[1]};
     bsfit__run t = {tri, 3, 0, 3};
     bsfit__circle C;
-    if (!bsfit__fit_circle(&t, NULL, &C)) return 0;
+    if (!bsfit__fit_circle(&t, NULL, 0.0, &C)) return 0;
     for (k = 1; k + 1 < n; k++)
       if (bsfit__circle_dist(&C, sample(s, i + k)) > 8 * s->tol) return 1;
   }
   return 0;
 }
 
-/* len[i] = the most samples from i that one model of `kind` explains within tol (0
-** when fewer than its minimum). Two pointers: a run from i+1 is at least the run from
-** i less one sample, so each start resumes where the previous stopped, its model
-** warm-started from the previous one; a sample the current model misses triggers a
-** refit when the run has grown by an eighth since the last (else it ends there). */
+/* Does a model with n samples, its largest distance mx and residual sum of squares rss,
+** explain them? Every sample within tol, and the residual no larger than noise of the
+** level sigma (unit) leaves in n - k degrees of freedom (k = 2 for a line, 3 for a circle)
+** but rarely: dof + 3 sqrt(2 dof) + 3 sigma^2, the chi-square test at about 0.3%. The
+** largest distance alone lets a short arc of 4 or 5 samples bend round a corner whose
+** samples all lie within 4 sigma of it; their sum of squares does not pass. */
+static int explains(const section *s, int kind, size_t n, double mx, double rss) {
+  double dof = (double)n - (kind == LINE ? 2.0 : 3.0);
+  if (!(mx <= s->tol)) return 0;
+  if (dof < 1 || 1) return 1;
+  return rss <= s->unit * s->unit * (dof + 3.0 * sqrt(2.0 * dof) + 3.0);
+}
+
+/* fits a model to n samples from first (warm-started from warm) and tests it; its
+** residual sum of squares into *rss */
+static int fit_explains(const section *s, int kind, size_t first, size_t n, const model *warm,
+                        model *md, double *rss) {
+  double rms = 0, mx = fit_model_from(s, kind, first, n, warm, md, &rms);
+  *rss = rms * rms * (double)n;
+  return explains(s, kind, n, mx, *rss);
+}
+
+/* the run from i grown sample by sample while md (fitted to its first n samples, residual
+** rss) explains it; a sample it misses triggers a refit when the run has grown by an
+** eighth since the last (else the run ends there). Returns its length. */
+static size_t grow_run(const section *s, int kind, size_t i, size_t n, size_t limit, model *md,
+                       double rss) {
+  size_t good = n, fitted = n;
+  while (n < limit) {
+    model next;
+    double d = model_dist(md, sample(s, i + n)), r2;
+    if (explains(s, kind, n + 1, d > 0 ? d : 0, rss + d * d)) {
+      rss += d * d;
+      n++;
+      continue;
+    }
+    if (8 * (n + 1 - fitted) < n + 1) break;
+    if (!fit_explains(s, kind, i, n + 1, md, &next, &r2)) break;
+    *md = next, rss = r2;
+    good = fitted = ++n;
+  }
+  /* the last samples were judged by an older model: confirm the whole run, or fall back
+  ** to the last run a full fit confirmed */
+  if (n > good && !fit_explains(s, kind, i, n, md, md, &rss)) {
+    n = good;
+    fit_explains(s, kind, i, n, md, md, &rss);
+  }
+  return n;
+}
+
+/* len[i] = the most samples from i that one model of `kind` explains (0 when fewer than
+** its minimum). Two pointers: a run from i+1 is at least the run from i less one sample,
+** so each start resumes where the previous stopped, its model warm-started from the
+** previous one. O(m r). */
 static bsfit_err maximal_runs(const section *s, int kind, size_t *len) {
   size_t i, prev = 0, minl = s->min_len[kind];
   model md, last;
   int have_last = 0;
   for (i = 0; i < s->m; i++) {
     size_t limit = s->closed ? s->m : s->m - i;
-    size_t n = prev > minl ? prev - 1 : minl, good, fitted;
+    size_t n = prev > minl ? prev - 1 : minl;
+    double rss;
     if ((i & 255) == 0 && bsfit__interrupted(s->a)) return BSFIT_EINTR;
     len[i] = 0;
-    if (n > limit || minl > limit) {
-      prev = 0;
+    if (n > limit || minl > limit || (n == minl && seed_misses(s, kind, i, n))) {
+      prev = 0, have_last = 0;
       continue;
     }
-    if (n == minl && seed_misses(s, kind, i, n)) {
-      prev = 0;
-      have_last = 0;
-      continue;
-    }
-    if (fit_model_from(s, kind, i, n, have_last ? &last : NULL, &md, NULL) > s->tol) {
+    if (!fit_explains(s, kind, i, n, have_last ? &last : NULL, &md, &rss)) {
       n = minl;
-      if (seed_misses(s, kind, i, n) || fit_model(s, kind, i, n, &md, NULL) > s->tol) {
+      if (seed_misses(s, kind, i, n) || !fit_explains(s, kind, i, n, NULL, &md, &rss)) {
         prev = 0, have_last = 0;
         continue;
       }
     }
-    good = fitted = n;
-    while (n < limit) {
-      model next;
-      if (model_dist(&md, sample(s, i + n)) <= s->tol) {
-        n++;
-        continue;
-      }
-      if (8 * (n + 1 - fitted) < n + 1) break;
-      if (fit_model_from(s, kind, i, n + 1, &md, &next, NULL) > s->tol) break;
-      md = next;
-      good = fitted = ++n;
-    }
-    /* the last samples were judged by an older model: confirm the whole run, or fall
-    ** back to the last run a full fit confirmed */
-    if (n > good && fit_model_from(s, kind, i, n, &md, &md, NULL) > s->tol) {
-      n = good;
-      fit_model_from(s, kind, i, n, &md, &md, NULL);
-    }
+    n = grow_run(s, kind, i, n, limit, &md, rss);
     last = md, have_last = 1;
     len[i] = distinct(s, i, n) >= minl ? n : 0;
     prev = n;
@@ -536,6 +566,44 @@ static void short_runs(const section *s, bsfit_piece *p, model *md, size_t np) {
   }
 }
 
+/* Under noise one or two samples next to a corner may miss both sides' models by a little
+** more than the tolerance allows a run (the run's test is on all its samples at once): a
+** free run of them between two primitives would round the corner. Each is given to the
+** neighbour whose model it lies nearer, when within twice the tolerance of it, and the
+** free run goes. Returns the new number of pieces. */
+static size_t absorb_strays(const section *s, bsfit_piece *p, model *md, size_t np) {
+  size_t i = 0;
+  while (i < np && np > 2) {
+    size_t ia = (i + np - 1) % np, ib = (i + 1) % np, k, n = p[i].count;
+    int to[2] = {0, 0}, ok = 1;
+    if (p[i].kind != FREE || n == 0 || n > 2 || p[ia].kind == FREE || p[ib].kind == FREE ||
+        (!s->closed && (i == 0 || i + 1 == np))) {
+      i++;
+      continue;
+    }
+    for (k = 0; k < n; k++) {
+      const double *q = sample(s, p[i].first + k);
+      double da = model_dist(&md[ia], q), db = model_dist(&md[ib], q);
+      to[k] = da <= db ? 0 : 1;
+      ok = ok && fmin(da, db) <= 2 * s->tol;
+    }
+    if (!ok || (n == 2 && to[0] > to[1])) {
+      i++;
+      continue;
+    }
+    for (k = 0; k < n; k++)
+      if (to[k] == 0) p[ia].count++;
+    for (k = 0; k < n; k++)
+      if (to[k] == 1) p[ib].first = (p[ib].first + s->m - 1) % s->m, p[ib].count++;
+    refit(s, &p[ia], &md[ia]);
+    refit(s, &p[ib], &md[ib]);
+    memmove(&p[i], &p[i + 1], (np - i - 1) * sizeof *p);
+    memmove(&md[i], &md[i + 1], (np - i - 1) * sizeof *md);
+    np--;
+  }
+  return np;
+}
+
 /* The ends of every piece; a free bridge (no samples) is inserted where two primitives
 ** do not meet. p has room for 2 np pieces; returns the new count. */
 static size_t place_ends(const section *s, bsfit_piece *p, model *md, size_t np) {
@@ -674,16 +742,44 @@ static void rebalance(const section *s, bsfit_piece *p, model *md, size_t np) {
   }
 }
 
-/* A fillet: an arc meeting a line tangentially at both ends. Its circle is then known
-** from the two lines up to its radius (its centre on the bisector of their corner), so
-** it is refitted with that one unknown (Gauss-Newton on the geometric distances): a
-** short noisy arc alone leaves its radius uncertain by many percent, the lines fix all
-** but one of its parameters. The tangent points move to the new circle. */
-static void refit_fillet(const section *s, bsfit_piece *A, const model *ma, bsfit_piece *F,
-                         model *mf, bsfit_piece *B, const model *mb) {
-  double V[2], u[2], k, r = mf->circle.r, c[2], f[2], t[2], rms = 0, un, cosphi;
+/* The radius of the circle tangent to two lines (its centre V + u k r) that fits F's
+** samples best: Gauss-Newton on the geometric distances, from r. Its residual sum of
+** squares into *rss; -1 when it fails. */
+static double fillet_radius(const section *s, const bsfit_piece *F, const double *V,
+                            const double *u, double k, double r, double *rss) {
   int it;
   size_t j;
+  for (it = 0; it < 20; it++) {
+    double g = 0, h = 0, step;
+    *rss = 0;
+    for (j = 0; j < F->count; j++) {
+      const double *q = sample(s, F->first + j);
+      double dx = q[0] - V[0] - u[0] * k * r, dy = q[1] - V[1] - u[1] * k * r, d = hypot(dx, dy);
+      double e = d - r, de = d > 0 ? -(dx * u[0] + dy * u[1]) * k / d - 1.0 : -1.0;
+      g += de * e;
+      h += de * de;
+      *rss += e * e;
+    }
+    if (!(h > 0)) return -1.0;
+    step = -g / h;
+    r += step;
+    if (!(r > 0)) return -1.0;
+    if (fabs(step) <= 1e-15 * r) break;
+  }
+  return r;
+}
+
+/* A fillet: an arc meeting a line tangentially at both ends. Its circle is then known
+** from the two lines up to its radius (its centre on the bisector of their corner), so
+** it is refitted with that one unknown: a short noisy arc alone leaves its radius
+** uncertain by many percent, the lines fix all but one of its parameters. But the lines
+** are extrapolated to their corner, and an error there moves the radius by 1/(k - 1)
+** times as much (2.4 at a right angle): the refit is taken only when its samples do not
+** tell against it, i.e. it adds at most 9 sigma^2 to their residual (the chi-square of its
+** two fewer parameters at 99%). The tangent points move to the new circle. */
+static void refit_fillet(const section *s, bsfit_piece *A, const model *ma, bsfit_piece *F,
+                         model *mf, bsfit_piece *B, const model *mb) {
+  double V[2], u[2], k, r, c[2], f[2], t[2], rms = 0, un, cosphi, rss;
   if (!bsfit__meet_lines(&ma->line, &mb->line, V)) return;
   u[0] = mb->line.d[0] - ma->line.d[0];
   u[1] = mb->line.d[1] - ma->line.d[1];
@@ -692,21 +788,8 @@ static void refit_fillet(const section *s, bsfit_piece *A, const model *ma, bsfi
   if (!(un > 1e-12) || cosphi >= 1 - 1e-12) return;
   u[0] /= un, u[1] /= un;
   k = 1.0 / sin(0.5 * acos(fmax(-1.0, fmin(1.0, cosphi))));
-  for (it = 0; it < 20; it++) {
-    double g = 0, h = 0, step;
-    for (j = 0; j < F->count; j++) {
-      const double *q = sample(s, F->first + j);
-      double dx = q[0] - V[0] - u[0] * k * r, dy = q[1] - V[1] - u[1] * k * r, d = hypot(dx, dy);
-      double e = d - r, de = d > 0 ? -(dx * u[0] + dy * u[1]) * k / d - 1.0 : -1.0;
-      g += de * e;
-      h += de * de;
-    }
-    if (!(h > 0)) return;
-    step = -g / h;
-    r += step;
-    if (!(r > 0)) return;
-    if (fabs(step) <= 1e-15 * r) break;
-  }
+  r = fillet_radius(s, F, V, u, k, mf->circle.r, &rss);
+  if (!(r > 0) || rss - F->rms * F->rms * (double)F->count > 9.0 * s->unit * s->unit) return;
   c[0] = V[0] + u[0] * k * r;
   c[1] = V[1] + u[1] * k * r;
   mf->circle.c[0] = c[0], mf->circle.c[1] = c[1], mf->circle.r = r;
@@ -760,6 +843,7 @@ static size_t finish_pieces(const section *s, bsfit_piece *p, model *md, size_t 
     md[i].kind = p[i].kind;
     if (p[i].kind != FREE) refit(s, &p[i], &md[i]);
   }
+  if (s->noisy) np = absorb_strays(s, p, md, np);
   short_runs(s, p, md, np);
   rebalance(s, p, md, np);
   if (np == 1 && s->closed && p[0].kind == ARC &&
@@ -829,6 +913,7 @@ bsfit_err bsfit_segment(const double *pts, size_t m, int dim, const bsfit_segmen
   s.tol = fmax((o.tol_sigma > 0 ? o.tol_sigma : 4.0) * o.sigma,
                (o.exact > 0 ? o.exact : 1e-10) * bsfit__segment_size(pts, m));
   s.unit = s.tol / (o.tol_sigma > 0 ? o.tol_sigma : 4.0);
+  s.noisy = o.sigma > 0 && s.tol <= (o.tol_sigma > 0 ? o.tol_sigma : 4.0) * o.sigma;
   s.gaps = bsfit__alloc(a, bsfit__mulsize(2 * m + 1, sizeof(size_t)));
   len[0] = bsfit__alloc(a, bsfit__mulsize(m, sizeof(size_t)));
   len[1] = bsfit__alloc(a, bsfit__mulsize(m, sizeof(size_t)));

@@ -26,26 +26,80 @@ static double chord_sigma(const double *pts, size_t m, int closed, double *d) {
   return n ? bsfit__select(d, n, n / 4) / 0.3186 : 0.0;
 }
 
-/* pooled residual of the lines and arcs: sum of squares over degrees of freedom */
-static double pooled_sigma(const bsfit_piece *p, size_t np) {
+/* what a segmentation at one level shows: the pooled residual of its lines and arcs (sum
+** of squares over degrees of freedom; -1 without any), the same from the lower quartile of
+** their samples' distances (robust), the samples they hold */
+typedef struct level {
+  double pooled, robust;
+  size_t held;
+} level;
+
+/* the distance of sample q to the model of piece p (a line through its ends, a circle) */
+static double piece_dist(const bsfit_piece *p, const double *q) {
+  if (p->kind == BSFIT_PIECE_ARC) return fabs(hypot(q[0] - p->centre[0], q[1] - p->centre[1]) - p->radius);
+  {
+    double dx = p->end[0] - p->start[0], dy = p->end[1] - p->start[1], l = hypot(dx, dy);
+    return l > 0 ? fabs((q[0] - p->start[0]) * dy - (q[1] - p->start[1]) * dx) / l : 0.0;
+  }
+}
+
+/* d: room for the samples of every piece (2 m) */
+static level level_of(const double *pts, size_t m, const bsfit_piece *p, size_t np, double *d) {
   double rss = 0, dof = 0;
-  size_t i;
+  level l = {-1.0, -1.0, 0};
+  size_t i, j, n = 0;
   for (i = 0; i < np; i++) {
     double k = p[i].kind == BSFIT_PIECE_LINE ? 2 : 3;
+    if (p[i].kind != BSFIT_PIECE_FREE) l.held += p[i].count;
     if (p[i].kind == BSFIT_PIECE_FREE || (double)p[i].count <= k) continue;
     rss += p[i].rms * p[i].rms * (double)p[i].count;
     dof += (double)p[i].count - k;
+    for (j = 0; j < p[i].count && n < 2 * m; j++)
+      d[n++] = piece_dist(&p[i], pts + 2 * ((p[i].first + j) % m));
   }
-  return dof > 0 ? sqrt(rss / dof) : -1.0;
+  if (dof > 0) {
+    l.pooled = sqrt(rss / dof);
+    l.robust = bsfit__select(d, n, n / 4) / 0.3186 * sqrt((double)n / dof);
+  }
+  return l;
+}
+
+/* The levels rise by 10^(1/4) from s0 up to max_sigma (and 5% of the size). Below the
+** noise, runs stop short and their pooled residual exceeds the level they were cut at; at
+** the noise the models are right and it matches: the first level whose pooled residual is
+** at most 1.2 times the level gives the estimate (that residual). Steps of 10^(1/2) miss
+** the match on sparse sections (a side of 3 samples has one degree of freedom: its
+** residual is far from steady), where the level above already lets a short arc take a
+** corner. */
+static bsfit_err search_levels(const double *pts, size_t m, double s0, double max_sigma,
+                               bsfit_segment_opts *o, bsfit_piece *p, double *d, double *sigma,
+                               const bsfit_allocator *a, bsfit_status *st) {
+  double size = bsfit__segment_size(pts, m);
+  int round;
+  size_t np = 0;
+  bsfit_err e;
+  for (round = 0; round < 64 && s0 < 0.05 * size && s0 <= max_sigma;
+       round++, s0 *= 1.7782794100389228) {
+    level l;
+    o->sigma = s0;
+    if ((round & 7) == 7 && bsfit__interrupted(a))
+      return bsfit__fail(st, BSFIT_EINTR, "segmentation noise interrupted");
+    if ((e = bsfit_segment(pts, m, 2, o, p, 2 * m + 2, &np, a, st)) != BSFIT_OK) return e;
+    l = level_of(pts, m, p, np, d);
+    if (l.pooled >= 0 && l.pooled <= 1.2 * s0 && l.pooled <= 3.0 * l.robust) {
+      *sigma = l.pooled <= 1e-10 * size ? 0.0 : l.pooled;
+      break;
+    }
+  }
+  return BSFIT_OK;
 }
 
 bsfit_err bsfit_segment_sigma(const double *pts, size_t m, int dim, int closed, double max_sigma,
                               double *sigma, const bsfit_allocator *a, bsfit_status *st) {
   bsfit_segment_opts o;
   bsfit_piece *p;
-  size_t bytes, np = 0;
+  size_t bytes;
   double *d, s0, size;
-  int round;
   bsfit_err e;
   memset(&o, 0, sizeof o);
   o.closed = closed;
@@ -54,36 +108,18 @@ bsfit_err bsfit_segment_sigma(const double *pts, size_t m, int dim, int closed, 
   if ((e = bsfit__segment_check(pts, m, dim, &o, st)) != BSFIT_OK) return e;
   bytes = bsfit__mulsize(2 * m + 2, sizeof *p);
   p = bsfit__alloc(a, bytes);
-  d = bsfit__alloc(a, m * sizeof *d);
+  d = bsfit__alloc(a, 2 * m * sizeof *d);
   if (!p || !d) {
     e = bsfit__fail(st, BSFIT_ENOMEM, "out of memory for the noise of %zu points", m);
     goto done;
   }
-  /* Below the noise, the runs stop short and their pooled residual exceeds the level
-  ** they were cut at; at the noise, the models are right and it matches: the first level,
-  ** rising by 10^(1/2) from well below the first guess, whose pooled residual is at most
-  ** 1.2 times the level is the estimate. */
   size = bsfit__segment_size(pts, m);
   s0 = fmax(chord_sigma(pts, m, closed, d) / 16.0, 1e-9 * size);
   if (!(max_sigma > 0)) max_sigma = 0.05 * size;
-  for (round = 0; round < 48 && s0 < 0.05 * size && s0 <= max_sigma;
-       round++, s0 *= 3.1622776601683795) {
-    double s1;
-    o.sigma = s0;
-    if ((round & 7) == 7 && bsfit__interrupted(a)) {
-      e = bsfit__fail(st, BSFIT_EINTR, "segmentation noise interrupted");
-      goto done;
-    }
-    if ((e = bsfit_segment(pts, m, 2, &o, p, 2 * m + 2, &np, a, st)) != BSFIT_OK) goto done;
-    s1 = pooled_sigma(p, np);
-    if (s1 >= 0 && s1 <= 1.2 * s0) {
-      *sigma = s1 <= 1e-10 * size ? 0.0 : s1;
-      break;
-    }
-  }
-  e = bsfit__ok(st);
+  e = search_levels(pts, m, s0, max_sigma, &o, p, d, sigma, a, st);
+  if (e == BSFIT_OK) e = bsfit__ok(st);
 done:
   bsfit__free(a, p, p ? bytes : 0);
-  bsfit__free(a, d, d ? m * sizeof *d : 0);
+  bsfit__free(a, d, d ? 2 * m * sizeof *d : 0);
   return e;
 }

@@ -1,17 +1,23 @@
 /*
 ** self_intersect.c
 ** Does a 2D curve cross itself? (bsfit_features.h) Its polyline of k samples is tested
-** edge against edge, only for the pairs whose x-ranges overlap: the edges sorted by
-** their left end, each compared with the following ones until their left end passes
-** its right end.
+** edge against edge, only for the pairs whose ranges along a sweep axis overlap: the edges
+** sorted by their first end along it, each compared with the following ones until their
+** first end passes its last. The axis is at 1 radian to x, not x itself: the edges of a
+** side parallel to the sweep's normal all overlap each other, and made objects have
+** their sides along x and y (a T of 40 samples took 0.46 ms, its 2000 samples' vertical
+** edges compared pairwise).
 */
 #include "internal.h"
 
 #include <math.h>
 #include <stdlib.h>
 
+#define SWEEP_COS 0.54030230586813977 /* cos(1), sin(1): the sweep axis */
+#define SWEEP_SIN 0.84147098480789651
+
 typedef struct edge {
-  double x0, x1; /* x-range */
+  double x0, x1; /* range along the sweep axis */
   size_t i;      /* from sample i to i+1 */
 } edge;
 
@@ -87,8 +93,10 @@ bsfit_err bsfit_curve_self_intersections(const bsfit_curve *c, size_t k, size_t 
   if (closed) S[2 * k] = S[0], S[2 * k + 1] = S[1];
   ne = closed ? k : k - 1;
   for (i = 0; i < ne; i++) {
-    E[i].x0 = fmin(S[2 * i], S[2 * i + 2]);
-    E[i].x1 = fmax(S[2 * i], S[2 * i + 2]);
+    double p = SWEEP_COS * S[2 * i] + SWEEP_SIN * S[2 * i + 1];
+    double q = SWEEP_COS * S[2 * i + 2] + SWEEP_SIN * S[2 * i + 3];
+    E[i].x0 = fmin(p, q);
+    E[i].x1 = fmax(p, q);
     E[i].i = i;
   }
   *crossings = sweep(S, E, ne, closed, &first, al, &stop);

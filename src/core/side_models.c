@@ -44,8 +44,11 @@ double bsfit__line_dist(const bsfit__line *L, const double *x) {
   return fabs((x[0] - L->p[0]) * L->d[1] - (x[1] - L->p[1]) * L->d[0]);
 }
 
+/* sqrt(x^2 + y^2), not hypot, in the hot loops: hypot guards against overflow that
+** coordinates relative to a run's first sample never come near, at several times the cost */
 double bsfit__circle_dist(const bsfit__circle *C, const double *x) {
-  return fabs(hypot(x[0] - C->c[0], x[1] - C->c[1]) - C->r);
+  double dx = x[0] - C->c[0], dy = x[1] - C->c[1];
+  return fabs(sqrt(dx * dx + dy * dy) - C->r);
 }
 
 double bsfit__line_max(const bsfit__line *L, const bsfit__run *r, double *rms) {
@@ -94,7 +97,7 @@ static double gauss_newton_step(const bsfit__run *r, const double *o, double *c,
   int i, j;
   for (k = 0; k < r->n; k++) {
     const double *p = bsfit__run_at(r, k);
-    double x = p[0] - o[0] - c[0], y = p[1] - o[1] - c[1], d = hypot(x, y), J[3], e;
+    double x = p[0] - o[0] - c[0], y = p[1] - o[1] - c[1], d = sqrt(x * x + y * y), J[3], e;
     if (d <= 0) continue;
     J[0] = -x / d;
     J[1] = -y / d;
@@ -115,7 +118,7 @@ static double gauss_newton_step(const bsfit__run *r, const double *o, double *c,
   return sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
 }
 
-int bsfit__fit_circle(const bsfit__run *r, const bsfit__circle *init, bsfit__circle *C) {
+int bsfit__fit_circle(const bsfit__run *r, const bsfit__circle *init, double eps, bsfit__circle *C) {
   const double *o = bsfit__run_at(r, 0);
   double c[2], rad, step;
   int it;
@@ -128,10 +131,15 @@ int bsfit__fit_circle(const bsfit__run *r, const bsfit__circle *init, bsfit__cir
   c[0] = C->c[0] - o[0];
   c[1] = C->c[1] - o[1];
   rad = C->r;
+  /* until a step moves the circle by less than eps (the caller's use of it: distances are
+  ** compared with a tolerance) or by 1e-13 of its scale (exact samples converge
+  ** quadratically: the error left is the step's square) */
   for (it = 0; it < 30; it++) {
+    double scale;
     step = gauss_newton_step(r, o, c, &rad);
     if (step < 0 || !isfinite(rad)) return 0;
-    if (step <= 1e-15 * (rad + hypot(c[0], c[1]))) break;
+    scale = rad + fabs(c[0]) + fabs(c[1]);
+    if (step <= 1e-13 * scale || step <= eps) break;
   }
   if (!(rad > 0)) return 0;
   C->c[0] = o[0] + c[0];

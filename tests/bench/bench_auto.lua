@@ -110,3 +110,28 @@ for _, c in ipairs {
         :format(c[1] .. ":", ms, rep.pieces and "pieces" or "smooth", rep.pieces and #rep.pieces or 0,
                 #rep.corners, rep.times.segment or 0, rep.times.assemble or 0))
 end
+
+-- The speed floor of the issue (a 40-point section's whole run under 1 ms), read on a
+-- shared machine: the minimum of many runs, in total and per step (each step's own
+-- minimum), for the noisy star and for sections of lines and arcs.
+local function minimum(P, runs)
+  local best, steps = math.huge, {}
+  for _ = 1, runs do
+    local t0 = clock()
+    local _, rep = auto.run(P)
+    best = math.min(best, clock() - t0)
+    for k, v in pairs(rep.times) do steps[k] = math.min(steps[k] or math.huge, v) end
+  end
+  local parts = {}
+  for _, name in ipairs(auto.order) do parts[#parts + 1] = ("%s %.3f"):format(name, steps[name] or 0) end
+  return best * 1000, table.concat(parts, ", ")
+end
+for _, c in ipairs {
+  { "noisy star, 40 points", section(40, 3) },
+  { "T, 40 exact points", polygon(T, 5, 0) },
+  { "T, 40 points, noise 1e-4", polygon(T, 5, 6.4e-4) },
+} do
+  local ms, steps = minimum(c[2], 300)
+  print(("auto, %-28s minimum of 300 runs %7.3f ms  (steps, each its minimum: %s)"):format(
+    c[1] .. ":", ms, steps))
+end

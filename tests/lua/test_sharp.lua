@@ -210,7 +210,8 @@ end)
 -- The noisy sweep: every outline at 6 and 10 samples per side, noise 1e-4 and 1e-3 of
 -- the size, two seeds. Sections whose pieces the auto strategy trusts (rep.pieces) are
 -- held to the issue's numbers; every section to no self-intersection; the share taken
--- through the pieces is reported and must not fall.
+-- through the pieces is reported and must not fall (test_sharp_noisy.lua: the sparse
+-- and uneven sweep, every section measured).
 T.test("noisy sections of lines and arcs: Hausdorff < 3 sigma + 1e-3, corners within a sample, radii 2%", function()
   local sharp_n, total = 0, 0
   for _, name in ipairs(NAMES) do
@@ -253,7 +254,9 @@ T.test("noisy sections of lines and arcs: Hausdorff < 3 sigma + 1e-3, corners wi
     end
   end
   print(("# noisy sweep: %d of %d sections through the pieces"):format(sharp_n, total))
-  T.ok(sharp_n >= 0.35 * total, ("only %d of %d noisy sections through the pieces"):format(sharp_n, total))
+  -- 39 of 104 before the distances to the pieces' curve were found from inside each piece
+  -- (a foot point stalled at a corner read 126 sigma for 2.7), 69 since
+  T.ok(sharp_n >= 0.6 * total, ("only %d of %d noisy sections through the pieces"):format(sharp_n, total))
 end)
 
 T.test("open or closed from the data: every generated case decided right, both overrides honoured", function()
@@ -328,4 +331,33 @@ T.test("never a loop: down-weighted gross outliers, and a crossing that remains 
   local _, rep = auto.run(bs.points.new(eight), { closed = true })
   T.ok(rep.crossings > 0, "figure eight: crossings " .. rep.crossings)
   T.ok(rep.warnings and rep.warnings[#rep.warnings]:match("crosses itself"), "warning")
+end)
+
+T.test("pictures: corners (C0) as diamonds where pieces meet, tangent joins (G1) as rings", function()
+  local svg = require "bsfit.svg"
+  for _, name in ipairs { "rrect", "keyhole", "D", "hexagon", "T_serif" } do
+    local o = ALL[name]
+    local P = bs.points.new(shapes.sample(o, 6))
+    local C, rep = auto.run(P)
+    local nc, nt = 0, 0
+    for _, p in ipairs(rep.pieces) do
+      if p.join == "corner" then nc = nc + 1 elseif p.join == "tangent" then nt = nt + 1 end
+    end
+    local s = svg.section { points = P, samples = C:sample(400), closed = true,
+                            corners = rep.corners, pieces = rep.pieces }
+    local _, dc = s:gsub('<polygon class="corner"', "")
+    local _, dt = s:gsub('<circle class="tangent"', "")
+    -- the truth: a corner for every true corner, a ring for every tangent join of the outline
+    T.eq(dc, #o.corners, name .. ": corner diamonds")
+    T.eq(dt, #o.prims - #o.corners, name .. ": tangent rings")
+    T.eq(nc + nt, #o.prims, name .. ": joins")
+    T.ok(nc == 0 or s:find(("corner, C0 (%d)"):format(nc), 1, true), name .. ": corner legend")
+    T.ok(nt == 0 or s:find(("tangent join, G1 (%d)"):format(nt), 1, true), name .. ": tangent legend")
+    -- each diamond at a true corner (a corner may lie between samples)
+    for x, y in s:gmatch('<polygon class="corner" points="([^,]+),([^ ]+) ') do
+      local best = math.huge
+      for _, v in ipairs(o.corners) do best = math.min(best, math.abs(v[1] - tonumber(x))) end
+      T.ok(best <= 1e-6 * shapes.size(o), name .. ": diamond at a corner " .. x .. " " .. y)
+    end
+  end
 end)

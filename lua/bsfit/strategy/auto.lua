@@ -36,7 +36,8 @@
 -- then m/3, at most 4000); optional: point_weights, tol.
 -- rep: count, sigma, corners (1-based indices), tries ({count, rms, max} per fit of the
 -- search), rms, max, max_index, residuals (distances), times per step, closed,
--- closed_ambiguous, crossings, pieces (when segmented), warnings.
+-- closed_ambiguous, crossings, pieces (when segmented), pieces_rejected (why a noisy section
+-- kept the smooth path), warnings.
 
 local bs = require "bsfit"
 local common = require "bsfit.strategy.common"
@@ -67,7 +68,7 @@ end
 
 local function closed(ctx) return common.closed(ctx) end
 
-local size_of, count_range
+local size_of, count_range, gap_decision
 
 -- Adds a warning for rep.warnings.
 local function warn(ctx, msg)
@@ -190,6 +191,13 @@ local function knots_for(ctx, n)
   local u = ctx.knot_params or ctx.params
   if closed(ctx) then
     n = math.max(n, #ctx.corners * p + 1) -- each corner takes p knots
+    local breaks = ctx.knot_breaks or ctx.corner_positions or ctx.corners
+    if #breaks == 0 and #u >= 6 and #u < 12 then
+      -- a handful of points without corners (6 samples of a D): the averaging rule
+      -- around the period (the break placement's empty-span guard needs more points)
+      return common.ok("knots", bs.knots.averaging { params = u, count = n, degree = p,
+                                                     closed = true }), n
+    end
     local K, N = common.ok("knots", bs.knots.breaks { params = u, degree = p, count = n,
       breaks = ctx.knot_breaks or ctx.corner_positions or ctx.corners })
     return widen_corner_spans(ctx, ctx.P, K, N)
@@ -302,28 +310,42 @@ end
 --     drawn along a smooth curve), and every corner turns by 15 degrees at least and is
 --     worth 25 sigma^2 over one smooth curve through both its sides (EVIDENCE).
 -- Returns the pieces, or {} (one smooth curve).
-local EVIDENCE, MIN_TURN, AGREE = 25, 15, 1.25
+-- The evidence of a corner (how much worse one smooth curve through both its sides explains
+-- their samples, in sigma^2) is, without a corner, about chi-square with the two models'
+-- one or two more parameters: above 14 one time in a thousand. The estimate of sigma from
+-- a few sides may be low by a factor sqrt(2), hence 25; a corner that turns by 60 degrees
+-- or more is not what a smooth curve sampled this sparsely does between two samples (a
+-- star's valley turns less at each sample), and 14 suffices (EVIDENCE_STEEP).
+local EVIDENCE, EVIDENCE_STEEP, STEEP, MIN_TURN, AGREE = 25, 14, 60, 15, 1.25
 local NOISY_MAX = 500 -- larger noisy sections keep the smooth path (the noise search costs m r)
 
 local function noisy_pieces(P, ctx)
-  if not (ctx.sigma > 0) then return nil end
+  if not (ctx.sigma > 0) then return nil, "no noise" end
   local s = common.ok("noise of the pieces", bs.geom.segment_sigma(P, { closed = closed(ctx),
                                                                       max = AGREE * ctx.sigma }))
-  if not (s > 0 and s < AGREE * ctx.sigma) then return nil end
+  if not (s > 0 and s < AGREE * ctx.sigma) then return nil, ("noise of the pieces %.3g, of windows %.3g"):format(s, ctx.sigma) end
   local pieces = common.ok("segmentation", bs.geom.segment(P, { closed = closed(ctx), sigma = s }))
+  -- one piece round a noisy section (a circle within the noise, a mesh's slice of a vase):
+  -- the smooth curve follows it as well, and stays polynomial
+  if #pieces < 2 then return nil, "one piece" end
+  ctx.sharp_candidate = { pieces = pieces, sigma = s } -- for the loops step, if need be
   local held = 0
   for i, p in ipairs(pieces) do
     if p.kind ~= "free" then held = held + p.count end
-    if p.kind == "free" and p.count == 0 then return nil end -- two models that do not meet
-    if p.join == "corner" and (p.turn < MIN_TURN or p.evidence < EVIDENCE) then return nil end
+    if p.kind == "free" and p.count == 0 then return nil, "bridge" end -- two models that do not meet
+    if p.join == "corner" and (p.turn < MIN_TURN or
+                               p.evidence < (p.turn >= STEEP and EVIDENCE_STEEP or EVIDENCE)) then
+      return nil, ("weak corner %d: turn %.3g evidence %.3g"):format(i, p.turn, p.evidence) end
     local q = pieces[(i - 2) % #pieces + 1]
-    if p.join == "tangent" and p.kind == "line" and q.kind == "line" and #pieces > 1 then return nil end
+    if p.join == "tangent" and p.kind == "line" and q.kind == "line" and #pieces > 1 then return nil, "tangent lines" end
   end
-  if held < 0.9 * #P then return nil end
+  if held < 0.9 * #P then return nil, ("held %d of %d"):format(held, #P) end
+  local bad = sharp.degenerate(pieces)
+  if bad then return nil, bad end
   -- the curve itself must stay within the noise of every sample (6 sigma)
   local C = sharp.assemble(P, pieces, { closed = closed(ctx), sigma = s })
-  local _, d = C:closest_many(P)
-  if d:max() > 6 * s then return nil end
+  local d = sharp.distances(C, P, pieces)
+  if d:max() > 6 * s then return nil, ("curve %.3g sigma from a sample"):format(d:max() / s) end
   ctx.segment_sigma, ctx.sharp_curve = s, C
   return pieces
 end
@@ -341,7 +363,11 @@ function steps.segment(P, ctx)
   local pieces = ctx.cache.exact_pieces or
                  common.ok("segmentation", bs.geom.segment(P, { closed = closed(ctx) }))
   if sharp.has_features(pieces, #P) then ctx.segment_sigma = 0; return pieces end
-  if #P <= NOISY_MAX then return noisy_pieces(P, ctx) or {} end
+  if #P <= NOISY_MAX then
+    local pieces, why = noisy_pieces(P, ctx)
+    ctx.sharp_rejected = why
+    return pieces or {}
+  end
   return {}
 end
 
@@ -353,16 +379,40 @@ function steps.params(P, ctx)
     closed = closed(ctx), weights = ctx.settings.point_weights, trust = ctx.settings.trust }))
 end
 
+-- degrees between the steps i -> j and j -> k of P
+local function turn(P, i, j, k)
+  local a, b, c = { P:get(i) }, { P:get(j) }, { P:get(k) }
+  local dot, na, nb = 0, 0, 0
+  for q = 1, #a do
+    local u, v = b[q] - a[q], c[q] - b[q]
+    dot, na, nb = dot + u * v, na + u * u, nb + v * v
+  end
+  if na == 0 or nb == 0 then return 0 end
+  return math.deg(math.acos(math.max(-1, math.min(1, dot / math.sqrt(na * nb)))))
+end
+
+-- Open or closed from the gap alone: closed, clear (see steps.ends). hmax: the longest step.
+function gap_decision(P, gap, h, hmax)
+  local m = #P
+  if gap <= 1.5 * h then return true, true end
+  if gap <= hmax then return true, false end
+  if gap <= 2.5 * h then return math.max(turn(P, m - 1, m, 1), turn(P, m, 1, 2)) <= 100, false end
+  return false, gap > 2.5 * hmax
+end
+
 -- Open or closed (setting closed = "auto", the default): from the gap between the last
 -- and the first point against the steps next to them (the two at each end, h_loc: a
 -- closed section's closing step is like its neighbours, while sections sampled sparsely
 -- along long sides have steps far longer elsewhere) and twice the median step, h =
--- max(h_loc, 2 h_med). A gap up to 1.5 h closes the section; one above 2.5 h opens it;
--- between, the section is closed when the closing chord continues both ends (turns by
--- at most 100 degrees from the last step and into the first: an open run's ends point
--- away from each other), and the decision is reported as ambiguous (rep.closed_ambiguous,
--- a warning). Exact lines and arcs that cover the section and meet across the gap close
--- it in any case. closed = true or false is taken as given.
+-- max(h_loc, 2 h_med). A gap up to 1.5 h closes the section, and so does one no longer
+-- than the longest step elsewhere (samples spread unevenly along long sides leave steps of
+-- half a side), as ambiguous; one above 2.5 h opens it, as ambiguous when it is within 2.5
+-- times the longest step; between, the section is closed when the closing chord continues
+-- both ends (turns by at most 100 degrees from the last step and into the first: an open
+-- run's ends point away from each other), as ambiguous. Ambiguous decisions are reported
+-- (rep.closed_ambiguous, a warning). Lines and arcs that cover the section
+-- and meet across the gap (sharp.closing_pieces) close it in any case, clearly. closed =
+-- true or false is taken as given.
 function steps.ends(P, ctx)
   local c = ctx.settings.closed
   if c == true or c == false then return c and "closed" or "open" end
@@ -392,29 +442,13 @@ function steps.ends(P, ctx)
   table.sort(all)
   local hmed = all[(#all + 1) // 2]
   local gap, h = step(m, 1), math.max(hloc, 2 * hmed)
-  local closed_, clear
-  if gap <= 1.5 * h then closed_, clear = true, true
-  elseif gap > 2.5 * h then closed_, clear = false, true
-  else
-    local function turn(i, j, k) -- degrees between steps i->j and j->k
-      local a, b, c = { P:get(i) }, { P:get(j) }, { P:get(k) }
-      local dot, na, nb = 0, 0, 0
-      for q = 1, #a do
-        local u, v = b[q] - a[q], c[q] - b[q]
-        dot, na, nb = dot + u * v, na + u * u, nb + v * v
-      end
-      if na == 0 or nb == 0 then return 0 end
-      return math.deg(math.acos(math.max(-1, math.min(1, dot / math.sqrt(na * nb)))))
-    end
-    closed_, clear = math.max(turn(m - 1, m, 1), turn(m, 1, 2)) <= 100, false
-  end
-  -- exact lines and arcs that meet across the gap close it, whatever the spacing
-  if not closed_ and P:dim() == 2 and m >= 6 then
-    local pieces = bs.geom.segment(P, { closed = true })
-    if pieces and sharp.has_features(pieces, m) then
-      local meet = true
-      for _, p in ipairs(pieces) do if p.kind == "free" and p.count == 0 then meet = false end end
-      if meet then closed_, clear, ctx.cache.exact_pieces = true, true, pieces end
+  local closed_, clear = gap_decision(P, gap, h, all[#all])
+  -- lines and arcs that meet across the gap close it, whatever the spacing
+  if (not closed_ or not clear) and P:dim() == 2 and m >= 6 then
+    local pieces, exact = sharp.closing_pieces(P, gap)
+    if pieces then
+      closed_, clear = true, true
+      if exact then ctx.cache.exact_pieces = pieces end
     end
   end
   ctx.settings.closed = closed_
@@ -440,6 +474,21 @@ function steps.weights(P, ctx)
   return pw
 end
 
+-- Corners found on the subsample of a large section (idx: its 1-based indices, tt their
+-- turns): placed at its points (the chords across are negligible there).
+local function subsample_corners(P, ctx, sub, idx, tt)
+  local full, forced, order = {}, {}, {}
+  for i, k in ipairs(idx) do full[i] = (k - 1) * sub.stride + 1; forced[full[i]] = true; order[i] = i end
+  table.sort(order, function(a, b) return full[a] < full[b] end)
+  ctx.corner_turns = {}
+  for i, k in ipairs(order) do ctx.corner_turns[i] = tt[k] end
+  table.sort(full)
+  ctx.corner_positions = full
+  if ctx.anchors then ctx.params = anchors.params(P, ctx, forced, sub) or ctx.params end
+  anchors.knots(ctx, full)
+  return full
+end
+
 function steps.corners(P, ctx)
   if sharp_path(ctx) then return sharp.corner_samples(P, ctx.segment) end
   if not closed(ctx) or #P < 12 then anchors.knots(ctx); return {} end
@@ -451,19 +500,7 @@ function steps.corners(P, ctx)
   if #idx == 0 then anchors.knots(ctx); return {} end
   local m = #P
   local tt = turns:totable()
-  if sub then
-    -- found on the subsample: at its points (the chords across are negligible there)
-    local full, forced, order = {}, {}, {}
-    for i, k in ipairs(idx) do full[i] = (k - 1) * sub.stride + 1; forced[full[i]] = true; order[i] = i end
-    table.sort(order, function(a, b) return full[a] < full[b] end)
-    ctx.corner_turns = {}
-    for i, k in ipairs(order) do ctx.corner_turns[i] = tt[k] end
-    table.sort(full)
-    ctx.corner_positions = full
-    if ctx.anchors then ctx.params = anchors.params(P, ctx, forced, subsample(ctx, P)) or ctx.params end
-    anchors.knots(ctx, full)
-    return full
-  end
+  if sub then return subsample_corners(P, ctx, sub, idx, tt) end
   -- positions in increasing order (the first corner's may wrap to just below m + 1),
   -- with their corner points, so the parameters can be made to agree with them
   local order, pos, pts = {}, where:totable(), at:totable()
@@ -619,29 +656,74 @@ function steps.reweight(P, ctx)
   return C
 end
 
--- Never a loop: a closed 2D curve is checked for self-intersection (a sweep over max(500, 16 n)
--- samples in C). A smooth fit that crosses itself is refitted with fewer control points
--- (0.8 times, three times at most); a crossing that remains, or one of the pieces' curve,
--- is reported in rep.warnings and rep.crossings. Returns the number of crossings.
+-- A smooth curve that still crosses itself, when lines and arcs within the noise were
+-- found but one of their corners fell short of the evidence: the curve of the pieces,
+-- when it does not cross itself and stays within 6 sigma of every sample, is the better
+-- answer (a loop is a defect; a weakly supported corner only a doubt), said in a warning.
+-- Returns 0 then, else nil.
+local function loop_free_pieces(P, ctx, k)
+  local alt = ctx.sharp_candidate
+  if sharp.degenerate(alt.pieces) or #alt.pieces < 2 then return nil end
+  for _, p in ipairs(alt.pieces) do if p.kind == "free" and p.count == 0 then return nil end end
+  local C = sharp.assemble(P, alt.pieces, { closed = closed(ctx), sigma = alt.sigma })
+  if bs.geom.self_intersections(C, k) > 0 then return nil end
+  if sharp.distances(C, P, alt.pieces):max() > 6 * alt.sigma then return nil end
+  ctx.segment, ctx.segment_sigma, ctx.curve = alt.pieces, alt.sigma, C
+  ctx.corners, ctx.count = sharp.corner_samples(P, alt.pieces), C:distinct()
+  warn(ctx, "the smooth curve crossed itself: fitted the lines and arcs instead (a corner of "
+    .. "theirs is weakly supported by the data)")
+  return 0
+end
+
+-- The smooth path's own sharp corners (triple knots) can swing a sparse section round a
+-- loop between them: when refits with other counts keep a crossing, the section is fitted
+-- again without corners (the corners step replaced by {}), kept when that has none, and
+-- said in a warning. Returns 0 then, else nil.
+local function without_corners(P, ctx)
+  if #ctx.corners == 0 or ctx.opts.corners ~= nil then return nil end
+  local o = {}
+  for key, v in pairs(ctx.opts) do o[key] = v end
+  o.corners, o.closed = {}, true
+  local C, rep = M.run(P, o)
+  if rep.crossings > 0 then return nil end
+  ctx.curve, ctx.corners, ctx.count, ctx.tries = C, {}, rep.count, rep.tries
+  ctx.params_final, ctx.distances, ctx.distances_of = nil, nil, nil
+  warn(ctx, "the curve with sharp corners crossed itself: fitted without them")
+  return 0
+end
+
+-- Never a loop: a closed 2D curve is checked for self-intersection (a sweep over
+-- max(2000, 32 n) samples in C: a loop at a corner can be a few thousandths of the curve
+-- long). A smooth fit that crosses itself is refitted with fewer control points (0.8, 0.64,
+-- 0.51 times), then with more (1.25, 1.56 times: too few can swing a sparse corner round),
+-- the first without a crossing kept (else the one with fewest); a crossing that remains, or
+-- one of the pieces' curve, is reported in rep.warnings and rep.crossings. Returns the
+-- number of crossings.
 function steps.loops(P, ctx)
   local C = ctx.curve
   if not closed(ctx) or P:dim() ~= 2 then return 0 end
-  local k = math.max(500, 16 * C:distinct())
+  local k = math.max(2000, 32 * C:distinct())
   local n, where = bs.geom.self_intersections(C, k)
-  local tries = 0
-  while n > 0 and not sharp_path(ctx) and tries < 3 and ctx.opts.count == nil do
-    local lo = select(1, count_range(P, ctx))
-    local fewer = math.max(lo, math.floor(0.8 * ctx.count))
-    if fewer >= ctx.count then break end
-    local C2, u, d = fit_corrected(ctx, P, fewer, ctx.sub and 1 or ctx.settings.correct)
-    local n2, w2 = bs.geom.self_intersections(C2, k)
-    tries = tries + 1
-    ctx.count = fewer
-    if n2 < n or n2 == 0 then
-      C, n, where = C2, n2, w2
-      ctx.curve, ctx.params_final, ctx.distances, ctx.distances_of = C2, u, d, C2
+  if n > 0 and not sharp_path(ctx) and ctx.opts.count == nil then
+    local lo, hi = count_range(P, ctx)
+    local tried = { [ctx.count] = true }
+    for _, f in ipairs { 0.8, 0.64, 0.51, 1.25, 1.56 } do
+      local c = math.max(lo, math.min(hi, math.floor(f * ctx.count + 0.5)))
+      if not tried[c] then
+        tried[c] = true
+        local C2, u, d, N = fit_corrected(ctx, P, c, ctx.sub and 1 or ctx.settings.correct)
+        local n2, w2 = bs.geom.self_intersections(C2, k)
+        if n2 < n then
+          C, n, where = C2, n2, w2
+          ctx.curve, ctx.params_final, ctx.distances, ctx.distances_of = C2, u, d, C2
+          ctx.count = N
+        end
+        if n == 0 then break end
+      end
     end
   end
+  if n > 0 and not sharp_path(ctx) and ctx.sharp_candidate then n = loop_free_pieces(P, ctx, k) or n end
+  if n > 0 and not sharp_path(ctx) then n = without_corners(P, ctx) or n end
   if n > 0 then
     warn(ctx, ("the curve crosses itself (%d crossing%s, first near parameter %.4g)"):format(
       n, n == 1 and "" or "s", where))
@@ -650,7 +732,12 @@ function steps.loops(P, ctx)
 end
 
 function steps.measure(P, ctx)
-  if sharp_path(ctx) then return common.measure(P, ctx) end
+  if sharp_path(ctx) then
+    local d = sharp.distances(ctx.curve, P, ctx.segment)
+    local max, imax = d:max()
+    return common.add_trusted(ctx, { residuals = d:totable(), rms = d:rms(), max = max or 0,
+                                     max_index = imax or 1 })
+  end
   local d = ctx.distances -- the fit's last projection, when it is of this very curve
   if ctx.distances_of ~= ctx.curve or d == nil then
     d = select(2, ctx.curve:project(P, ctx.params_final or ctx.params, NEWTON))
@@ -674,6 +761,7 @@ function M.report(ctx)
   rep.closed_ambiguous = ctx.closed_ambiguous or false
   rep.crossings = ctx.loops or 0
   if sharp_path(ctx) then rep.pieces = ctx.segment end
+  rep.pieces_rejected = ctx.sharp_rejected
   -- warnings: appended to those the common report may already carry
   if ctx.warnings and #ctx.warnings > 0 then
     rep.warnings = rep.warnings or {}

@@ -139,14 +139,65 @@ local function piece_curve(P, p, o)
   return C, math.max(C:length(), 1e-300)
 end
 
+-- Why pieces cannot be made into one curve (nil when they can): a line or an arc of zero
+-- length between two joins, or an arc that goes all the way round beside other pieces (a
+-- segmentation of a noisy blob can close one arc on itself and leave its neighbour nothing).
+function M.degenerate(pieces)
+  local scale = 0
+  for _, p in ipairs(pieces) do scale = math.max(scale, math.abs(p.start[1]), math.abs(p.start[2])) end
+  for i, p in ipairs(pieces) do
+    local len = p.kind == "arc" and p.radius * math.abs(p.sweep) or dist(p.start, p["end"])
+    if p.kind ~= "free" and not (len > 1e-12 * scale) and not (#pieces == 1 and p.kind == "arc") then
+      return ("piece %d (%s) has no length"):format(i, p.kind)
+    end
+    if p.kind == "arc" and #pieces > 1 and math.abs(p.sweep) >= 2 * math.pi - 1e-9 then
+      return ("arc %d goes all the way round"):format(i)
+    end
+  end
+  return nil
+end
+
 -- Does the segmentation of m samples carry features worth one curve of pieces? Lines
 -- and arcs must hold at least half the samples: a short run that rounded data fits
 -- by chance (4 samples of a cam's base circle, to 6 decimals) does not make a section
 -- of lines and arcs.
 function M.has_features(pieces, m)
+  if M.degenerate(pieces) then return false end
   local held = 0
   for _, p in ipairs(pieces) do if p.kind ~= "free" then held = held + p.count end end
   return held >= 0.5 * m
+end
+
+-- The pieces of a section segmented as closed, when lines and arcs hold it and meet across
+-- the gap between its last and first samples (gap: their distance) without a detour: exact
+-- lines and arcs (returns the pieces and true), else lines and arcs within the noise they
+-- show themselves (bs.geom.segment_sigma) that hold 90% of the samples, meet everywhere and
+-- close at a corner or a tangent no farther from the two samples than 1.5 gaps together
+-- (the end sides of an open run of an outline may meet, but far out), the gap no longer than
+-- three times the longest other step (an open run's ends lie across its shape). nil otherwise.
+function M.closing_pieces(P, gap)
+  local m = #P
+  local longest = 0
+  for i = 1, m - 1 do longest = math.max(longest, dist({ P:get(i) }, { P:get(i + 1) })) end
+  local pieces = bs.geom.segment(P, { closed = true })
+  local exact = pieces and M.has_features(pieces, m)
+  if not exact then
+    local s = bs.geom.segment_sigma(P, { closed = true })
+    if not (s and s > 0) or gap > 3 * longest then return nil end
+    pieces = bs.geom.segment(P, { closed = true, sigma = s })
+    local held = 0
+    for _, p in ipairs(pieces or {}) do if p.kind ~= "free" then held = held + p.count end end
+    if held < 0.9 * m then return nil end
+  end
+  for _, p in ipairs(pieces) do
+    if p.kind == "free" and p.count == 0 then return nil end
+    -- the piece that holds the first sample starts in the gap: its start is the join
+    if p.first == 1 and not exact then
+      local a, b = { P:get(m) }, { P:get(1) }
+      if p.kind == "free" or dist(p.start, a) + dist(p.start, b) > 1.5 * gap then return nil end
+    end
+  end
+  return pieces, exact
 end
 
 -- A closed curve joined from pieces (clamped, its ends equal) in the periodic form
@@ -186,6 +237,34 @@ function M.assemble(P, pieces, o)
   pieces[#pieces].range[2] = 1
   if o.closed then C = periodic_of(C) end
   return C
+end
+
+-- The distances of the samples to the curve of the pieces (a Vector): each sample's foot is
+-- found by Newton from its place in its own piece's parameter range, so that it never has
+-- to cross a corner (a foot search from a global start can stall at a C0 knot and report
+-- the distance to the corner instead); the nearer of that and the global closest point.
+function M.distances(C, P, pieces)
+  local a, b = C:domain()
+  local m, u = #P, {}
+  for _, p in ipairs(pieces) do
+    for k = 0, p.count - 1 do
+      local f = (k + 0.5) / p.count
+      u[(p.first - 1 + k) % m + 1] = a + (b - a) * (p.range[1] + f * (p.range[2] - p.range[1]))
+    end
+  end
+  for i = 1, m do u[i] = u[i] or a end
+  -- a repeated point starts where its first does: the same distance, to the last digit
+  local prev = { P:get(1) }
+  for i = 2, m do
+    local q = { P:get(i) }
+    if q[1] == prev[1] and q[2] == prev[2] then u[i] = u[i - 1] end
+    prev = q
+  end
+  local _, d = C:project(P, bs.vector.new(u), 8)
+  local _, g = C:closest_many(P)
+  local t = {}
+  for i = 1, m do t[i] = math.min(d:get(i), g:get(i)) end
+  return bs.vector.new(t)
 end
 
 -- 1-based samples nearest to the corners (for rep.corners)

@@ -1,0 +1,236 @@
+-- test_sharp_noisy.lua: the auto strategy on sparse and noisy sections of lines and arcs
+-- (issue 14), against the true outlines of tests/lua/shapes_sharp.lua, and on smooth shapes
+-- (no corner where there is none).
+--
+-- Every section of the sweep (3 to 10 samples per side, noise 1e-4 to 3e-3 of the size,
+-- even and uneven) is held to: no error, decided closed, no self-intersection, a finite
+-- report. The issue's numbers (Hausdorff distance to the truth within 3 sigma + 1e-3 of
+-- the size, corners within one sample, radii within 2%) are measured on every section,
+-- smooth path or pieces, printed per density and noise, and held to the shares reached
+-- (docs/auto.md lists them with those before this work): a change that loses sections
+-- fails here. At noise 1e-2: no loop and no corner farther than a sample from a true one.
+local T = require "tap"
+local bs = require "bsfit"
+local shapes = require "shapes_sharp"
+local synth = require "synth"
+local auto = require "bsfit.strategy.auto"
+
+local function dist(a, b) return math.sqrt((a[1] - b[1]) ^ 2 + (a[2] - b[2]) ^ 2) end
+
+local ALL = shapes.all()
+local NAMES = {}
+for k in pairs(ALL) do NAMES[#NAMES + 1] = k end
+table.sort(NAMES)
+
+-- Where a corner may be found: the true corners, and the vertex of every arc shorter than
+-- the sampling's step h (the issue: "a fillet wider than the local spacing is not a
+-- corner"; one narrower, sampled once or not at all, may be one), where the lines tangent
+-- at its ends meet.
+local function corner_places(o, h)
+  local at = {}
+  for _, v in ipairs(o.corners) do at[#at + 1] = v end
+  for _, q in ipairs(o.prims) do
+    if q.kind == "arc" and q.r * math.abs(q.sweep) < h and math.abs(q.sweep) < 0.9 * math.pi then
+      local mid, d = q.a0 + q.sweep / 2, q.r / math.cos(q.sweep / 2)
+      at[#at + 1] = { q.c[1] + d * math.cos(mid), q.c[2] + d * math.sin(mid) }
+    end
+  end
+  return at
+end
+
+-- the largest step between consecutive samples (closing step included)
+local function spacing(pts)
+  local h = dist(pts[#pts], pts[1])
+  for i = 2, #pts do h = math.max(h, dist(pts[i], pts[i - 1])) end
+  return h
+end
+
+-- One section: its checks that must hold, and what it measures. Returns
+-- {pieces, within (Hausdorff), ratio, corners_ok, corners, radii_ok, radii}.
+local function run_case(name, per, rel, uneven, seed)
+  local o = ALL[name]
+  local size = shapes.size(o)
+  local sigma = rel * size
+  local pts = shapes.sample(o, per, { sigma = sigma, seed = seed, uneven = uneven })
+  local what = ("%s %d per side noise %g %s seed %d"):format(name, per, rel,
+                                                             uneven and "uneven" or "even", seed)
+  local ok, C, rep = pcall(auto.run, bs.points.new(pts))
+  T.ok(ok, what .. ": " .. tostring(ok or C))
+  if not ok then return nil end
+  -- closed, or the doubt said (samples spread unevenly can leave a gap as long as a side)
+  T.ok(rep.closed or rep.closed_ambiguous, what .. ": fitted open without a word")
+  T.ok(rep.max == rep.max and rep.max < math.huge, what .. ": finite report")
+  T.eq((bs.geom.self_intersections(C, 2000)), 0, what .. ": self-intersection")
+  local h = shapes.hausdorff(bs, C, o, 2000, 60)
+  local r = { pieces = rep.pieces ~= nil, ratio = h / (3 * sigma + 1e-3 * size), closed = rep.closed,
+              corners = 0, corners_ok = 0, radii = 0, radii_ok = 0 }
+  r.within = r.ratio <= 1
+  local hs = spacing(pts)
+  local places = corner_places(o, hs)
+  for _, p in ipairs(rep.pieces or {}) do
+    if p.join == "corner" then
+      local best = math.huge
+      for _, v in ipairs(places) do best = math.min(best, dist(v, p.start)) end
+      r.corners = r.corners + 1
+      if best <= hs then r.corners_ok = r.corners_ok + 1 end
+    end
+    if p.kind == "arc" then
+      local best, tr = math.huge, nil
+      for _, q in ipairs(o.prims) do
+        if q.kind == "arc" and dist(q.c, p.centre) < best then best, tr = dist(q.c, p.centre), q end
+      end
+      r.radii = r.radii + 1
+      if tr and math.abs(p.radius - tr.r) <= 0.02 * tr.r then r.radii_ok = r.radii_ok + 1 end
+    end
+  end
+  return r
+end
+
+-- the shares reached (of 390 sections; docs/auto.md, "Noisy and sparse sections")
+-- (178, 211, 167, 1553 of 1564 and 92 of 120 when written; before this work 82 within,
+-- 95 through the pieces)
+local FLOOR = { within = 170, pieces = 200, pieces_within = 160, corners = 0.98, radii = 0.72 }
+
+T.test("sparse and noisy sections: no error, closed, no loop; the issue's numbers measured on all", function()
+  local rows, tot = {}, { n = 0, pieces = 0, within = 0, pw = 0, c = 0, cok = 0, r = 0, rok = 0 }
+  for k, name in ipairs(NAMES) do
+    for _, per in ipairs { 3, 4, 5, 6, 10 } do
+      for j, rel in ipairs { 1e-4, 1e-3, 3e-3 } do
+        for _, uneven in ipairs { false, true } do
+          local r = run_case(name, per, rel, uneven, 1000 * k + 10 * per + j)
+          local key = ("%2d per side, noise %g"):format(per, rel)
+          local row = rows[key] or { n = 0, pieces = 0, within = 0, worst = 0 }
+          rows[key] = row
+          if r then
+            row.n, tot.n = row.n + 1, tot.n + 1
+            if r.pieces then row.pieces, tot.pieces = row.pieces + 1, tot.pieces + 1 end
+            if r.within then row.within, tot.within = row.within + 1, tot.within + 1 end
+            if r.within and r.pieces then tot.pw = tot.pw + 1 end
+            row.worst = math.max(row.worst, r.ratio)
+            tot.c, tot.cok = tot.c + r.corners, tot.cok + r.corners_ok
+            tot.r, tot.rok = tot.r + r.radii, tot.rok + r.radii_ok
+          end
+        end
+      end
+    end
+  end
+  local keys = {}
+  for key in pairs(rows) do keys[#keys + 1] = key end
+  table.sort(keys)
+  for _, key in ipairs(keys) do
+    local row = rows[key]
+    print(("# %s: %d sections, %d through the pieces, %d within 3 sigma + 1e-3, worst %.3g x")
+      :format(key, row.n, row.pieces, row.within, row.worst))
+  end
+  print(("# all: %d sections, %d through the pieces (%d of them within), %d within; corners %d/%d "
+         .. "within a sample, radii %d/%d within 2%%"):format(tot.n, tot.pieces, tot.pw, tot.within,
+         tot.cok, tot.c, tot.rok, tot.r))
+  T.ok(tot.within >= FLOOR.within, ("%d sections within the Hausdorff floor"):format(tot.within))
+  T.ok(tot.pieces >= FLOOR.pieces, ("%d sections through the pieces"):format(tot.pieces))
+  T.ok(tot.pw >= FLOOR.pieces_within, ("%d through the pieces and within"):format(tot.pw))
+  T.ok(tot.cok >= FLOOR.corners * tot.c, ("corners within a sample: %d of %d"):format(tot.cok, tot.c))
+  T.ok(tot.rok >= FLOOR.radii * tot.r, ("radii within 2%%: %d of %d"):format(tot.rok, tot.r))
+end)
+
+T.test("noise 1e-2 of the size: no loop, no error, no corner farther than a sample from a true one "
+       .. "(or from a fillet narrower than a step)", function()
+  local far, corners = 0, 0
+  for k, name in ipairs(NAMES) do
+    local o = ALL[name]
+    local size = shapes.size(o)
+    for _, per in ipairs { 4, 6, 10 } do
+      for _, uneven in ipairs { false, true } do
+        local pts = shapes.sample(o, per, { sigma = 1e-2 * size, seed = 77 * k + per, uneven = uneven })
+        local what = ("%s %d per side%s"):format(name, per, uneven and " uneven" or "")
+        local ok, C, rep = pcall(auto.run, bs.points.new(pts))
+        T.ok(ok, what .. ": " .. tostring(ok or C))
+        if ok then
+          T.eq((bs.geom.self_intersections(C, 2000)), 0, what .. ": self-intersection")
+          local hs = spacing(pts)
+          local places = corner_places(o, hs)
+          for _, p in ipairs(rep.pieces or {}) do
+            if p.join == "corner" then
+              local best = math.huge
+              for _, v in ipairs(places) do best = math.min(best, dist(v, p.start)) end
+              corners = corners + 1
+              if best > hs then far = far + 1 end
+              T.ok(best <= hs, ("%s: corner (%g, %g) %g from a true one, spacing %g")
+                :format(what, p.start[1], p.start[2], best, hs))
+            end
+          end
+        end
+      end
+    end
+  end
+  print(("# noise 1e-2: %d corners found, %d farther than a sample"):format(corners, far))
+end)
+
+-- smooth shapes of size ~2: a cam besides synth's circle, ellipse, star and superellipse
+local SMOOTH = {}
+for k, f in pairs(synth.smooth) do SMOOTH[k] = f end
+SMOOTH.cam = function(t)
+  local r = 1 + 0.25 * math.cos(t) + 0.08 * math.cos(2 * t)
+  return r * math.cos(t), r * math.sin(t)
+end
+
+T.test("smooth shapes: no corner, no loop (24 to 200 points, noise 0 to 1e-2, even and uneven)", function()
+  local names = {}
+  for k in pairs(SMOOTH) do names[#names + 1] = k end
+  table.sort(names)
+  local false_corners = {}
+  for _, name in ipairs(names) do
+    for _, m in ipairs { 24, 40, 80, 200 } do
+      for j, rel in ipairs { 0, 1e-4, 1e-3, 3e-3, 1e-2 } do
+        for _, uneven in ipairs { false, true } do
+          local P = synth.noisy(synth.sample_smooth(SMOOTH[name], m, uneven), 2.5 * rel, m + j)
+          local what = ("%s %d points noise %g%s"):format(name, m, rel, uneven and " uneven" or "")
+          local ok, C, rep = pcall(auto.run, P)
+          T.ok(ok, what .. ": " .. tostring(ok or C))
+          if ok then
+            local joins = 0
+            for _, p in ipairs(rep.pieces or {}) do if p.join == "corner" then joins = joins + 1 end end
+            if #rep.corners + joins > 0 then false_corners[#false_corners + 1] = what end
+            T.eq(rep.crossings, 0, what .. ": crossings")
+            T.eq((bs.geom.self_intersections(C, 2000)), 0, what .. ": self-intersection")
+          end
+        end
+      end
+    end
+  end
+  print(("# smooth shapes: %d of 200 with a corner: %s"):format(#false_corners,
+                                                             table.concat(false_corners, ", ")))
+  -- one known today (docs/auto.md, Limits): an ellipse of 24 samples at noise 1e-2, two
+  -- arcs meeting at the ends of its major axis
+  T.ok(#false_corners <= 1, #false_corners .. " smooth sections with a corner")
+end)
+
+T.test("pieces that cannot make one curve keep the smooth path (a noisy cam raised in bs.curve.join)", function()
+  -- 80 samples of the cam at noise 1e-2: segmented into one arc gone all the way round and a
+  -- line of no length between its ends
+  local P = synth.noisy(synth.sample_smooth(SMOOTH.cam, 80, false), 0.025, 1)
+  local ok, C, rep = pcall(auto.run, P)
+  T.ok(ok, tostring(ok or C))
+  T.ok(ok and rep.pieces == nil and C:is_periodic(), "one smooth closed curve")
+  local sharp = require "bsfit.strategy.sharp"
+  T.ok(sharp.degenerate { { kind = "arc", start = { 1, 0 }, ["end"] = { 1, 0 }, radius = 1, sweep = 2 * math.pi },
+                          { kind = "line", start = { 1, 0 }, ["end"] = { 1, 0 } } } ~= nil)
+  T.eq(sharp.degenerate { { kind = "line", start = { 0, 0 }, ["end"] = { 1, 0 } },
+                          { kind = "line", start = { 1, 0 }, ["end"] = { 0, 0 } } }, nil)
+end)
+
+T.test("an airfoil: corners only at its sharp trailing edge, none at the leading edge", function()
+  for _, m in ipairs { 24, 40, 80, 200 } do
+    for j, rel in ipairs { 0, 1e-4, 1e-3, 3e-3 } do
+      for seed = 1, 2 do
+        local P = synth.noisy(synth.airfoil(m), rel, 10 * m + 3 * j + seed)
+        local what = ("airfoil %d points noise %g seed %d"):format(m, rel, seed)
+        local C, rep = auto.run(P)
+        for _, i in ipairs(rep.corners) do
+          local x = P:get(i)
+          T.ok(x > 0.8, ("%s: corner at x = %g"):format(what, x))
+        end
+        T.eq((bs.geom.self_intersections(C, 2000)), 0, what .. ": self-intersection")
+      end
+    end
+  end
+end)
