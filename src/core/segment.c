@@ -92,10 +92,6 @@ static double model_dist(const model *md, const double *x) {
 ** Maximal runs
 ** ===================================================================== */
 
-/* len[i] = the most samples from i that one model of `kind` explains within tol (0
-** when fewer than its minimum). Two pointers: a run from i+1 is at least the run from
-** i less one sample, so each start resumes where the previous stopped; a sample that
-** the current model misses triggers one refit before the run ends. O(m r). */
 /* A quick no for a seed of minl samples: the line through its ends (the circle through
 ** its ends and middle) misses one of them by far more than any least-squares model
 ** could spread (3 tol for a line, 8 for a circle). */
@@ -122,83 +118,99 @@ static int seed_misses(const section *s, int kind, size_t i, size_t n) {
   return 0;
 }
 
-/* Does a model with n samples, its largest distance mx and residual sum of squares rss,
-** explain them? Every sample within tol, and the residual no larger than noise of the
-** level sigma (unit) leaves in n - k degrees of freedom (k = 2 for a line, 3 for a circle)
-** but rarely: dof + 3 sqrt(2 dof) + 3 sigma^2, the chi-square test at about 0.3%. The
-** largest distance alone lets a short arc of 4 or 5 samples bend round a corner whose
-** samples all lie within 4 sigma of it; their sum of squares does not pass. */
-static int explains(const section *s, int kind, size_t n, double mx, double rss) {
-  double dof = (double)n - (kind == LINE ? 2.0 : 3.0);
-  if (!(mx <= s->tol)) return 0;
-  if (dof < 1 || 1) return 1;
-  return rss <= s->unit * s->unit * (dof + 3.0 * sqrt(2.0 * dof) + 3.0);
-}
-
-/* fits a model to n samples from first (warm-started from warm) and tests it; its
-** residual sum of squares into *rss */
+/* A model explains its samples when every one lies within tol. (A chi-square test on
+** their residual was tried as well: it turned fillets into corners; docs/auto.md.) This
+** is what makes runs nest: a model that explains a run explains every part of it. */
 static int fit_explains(const section *s, int kind, size_t first, size_t n, const model *warm,
-                        model *md, double *rss) {
-  double rms = 0, mx = fit_model_from(s, kind, first, n, warm, md, &rms);
-  *rss = rms * rms * (double)n;
-  return explains(s, kind, n, mx, *rss);
+                        model *md) {
+  return fit_model_from(s, kind, first, n, warm, md, NULL) <= s->tol;
 }
 
-/* the run from i grown sample by sample while md (fitted to its first n samples, residual
-** rss) explains it; a sample it misses triggers a refit when the run has grown by an
-** eighth since the last (else the run ends there). Returns its length. */
+/* Runs up to this length are refitted at every start and confirmed by a whole fit at
+** their end (a few hundred operations each); longer ones keep the model they inherit and
+** refit only when worth_refit says so, so that a section's long sides cost O(m) in all. */
+#define SHORT_RUN 64
+
+/* The last refit tried (successful or not): samples [start, start + len). A refit costs
+** O(len), so on a long run another is tried only when the run differs from that one by
+** an eighth of its samples (dropped at the front by later starts, or added at the back).
+** The samples that change between tries number at most 2m in all, so refits cost O(m)
+** over the section, whatever the length of its runs (each start used to refit its whole
+** run: quadratic, 2 s for 5000 samples of one circle, 6.5 s for a square of 64000). */
+typedef struct refit_mark {
+  size_t start, len;
+} refit_mark;
+
+static int worth_refit(const refit_mark *t, size_t i, size_t n) {
+  size_t dropped = i - t->start, added = i + n > t->start + t->len ? i + n - t->start - t->len : 0;
+  return 8 * (dropped + added) >= n;
+}
+
+/* the run from i (its first n samples explained by md) grown sample by sample while md
+** explains each; a sample it misses triggers a refit when worth_refit says so (else the
+** run ends there). A short run whose last samples were judged by an older model is
+** confirmed by a whole fit, or falls back to the last length a fit confirmed. Returns
+** its length; md explains all of it. */
 static size_t grow_run(const section *s, int kind, size_t i, size_t n, size_t limit, model *md,
-                       double rss) {
-  size_t good = n, fitted = n;
+                       refit_mark *tried) {
+  size_t good = n;
+  model next;
   while (n < limit) {
-    model next;
-    double d = model_dist(md, sample(s, i + n)), r2;
-    if (explains(s, kind, n + 1, d > 0 ? d : 0, rss + d * d)) {
-      rss += d * d;
+    if (model_dist(md, sample(s, i + n)) <= s->tol) {
       n++;
       continue;
     }
-    if (8 * (n + 1 - fitted) < n + 1) break;
-    if (!fit_explains(s, kind, i, n + 1, md, &next, &r2)) break;
-    *md = next, rss = r2;
-    good = fitted = ++n;
+    if (!worth_refit(tried, i, n + 1)) break;
+    tried->start = i, tried->len = n + 1;
+    if (!fit_explains(s, kind, i, n + 1, md, &next)) break;
+    *md = next;
+    good = ++n;
   }
-  /* the last samples were judged by an older model: confirm the whole run, or fall back
-  ** to the last run a full fit confirmed */
-  if (n > good && !fit_explains(s, kind, i, n, md, md, &rss)) {
-    n = good;
-    fit_explains(s, kind, i, n, md, md, &rss);
+  if (n > good && n <= SHORT_RUN) {
+    if (fit_explains(s, kind, i, n, md, &next)) *md = next;
+    else if (fit_explains(s, kind, i, good, md, &next)) *md = next, n = good;
   }
   return n;
 }
 
+/* A first model for the run from i: n samples fitted (warm-started from warm), else its
+** minl samples. Returns the samples it explains, 0 when none. */
+static size_t seed_run(const section *s, int kind, size_t i, size_t n, const model *warm,
+                       model *md, refit_mark *tried) {
+  size_t minl = s->min_len[kind];
+  tried->start = i, tried->len = n;
+  if (n > minl && fit_explains(s, kind, i, n, warm, md)) return n;
+  tried->len = minl;
+  if (seed_misses(s, kind, i, minl) || !fit_explains(s, kind, i, minl, n > minl ? NULL : warm, md))
+    return 0;
+  return minl;
+}
+
 /* len[i] = the most samples from i that one model of `kind` explains (0 when fewer than
-** its minimum). Two pointers: a run from i+1 is at least the run from i less one sample,
-** so each start resumes where the previous stopped, its model warm-started from the
-** previous one. O(m r). */
+** its minimum; a long run may stop short of the most by under an eighth where a refit
+** was not worth trying). Two pointers: the run from i - 1 less its first sample is a run
+** from i, so each start resumes where the previous stopped: a short run refitted
+** (warm-started from the previous model), a long one with the previous model, which
+** explains it. O(m) fits' worth of work. */
 static bsfit_err maximal_runs(const section *s, int kind, size_t *len) {
   size_t i, prev = 0, minl = s->min_len[kind];
-  model md, last;
-  int have_last = 0;
+  model md;
+  refit_mark tried = {0, 0};
   for (i = 0; i < s->m; i++) {
     size_t limit = s->closed ? s->m : s->m - i;
     size_t n = prev > minl ? prev - 1 : minl;
-    double rss;
     if ((i & 255) == 0 && bsfit__interrupted(s->a)) return BSFIT_EINTR;
     len[i] = 0;
-    if (n > limit || minl > limit || (n == minl && seed_misses(s, kind, i, n))) {
-      prev = 0, have_last = 0;
+    if (n > limit || minl > limit) {
+      prev = 0;
       continue;
     }
-    if (!fit_explains(s, kind, i, n, have_last ? &last : NULL, &md, &rss)) {
-      n = minl;
-      if (seed_misses(s, kind, i, n) || !fit_explains(s, kind, i, n, NULL, &md, &rss)) {
-        prev = 0, have_last = 0;
-        continue;
-      }
+    if (prev <= minl || n <= SHORT_RUN) n = seed_run(s, kind, i, n, prev ? &md : NULL, &md, &tried);
+    if (n == 0) {
+      prev = 0;
+      continue;
     }
-    n = grow_run(s, kind, i, n, limit, &md, rss);
-    last = md, have_last = 1;
+    n = grow_run(s, kind, i, n, limit, &md, &tried);
     len[i] = distinct(s, i, n) >= minl ? n : 0;
     prev = n;
   }
@@ -228,31 +240,87 @@ static const double COST[3] = {2.0, 3.0, 0.0};
 #define FREE_SAMPLE 1.5
 #define FREE_RUN 1.0
 
-/* best primitive piece ending at offset j (into *c); prim/fr are the two DP arrays */
+/* What a piece starting at offset a follows: the cheapest cover of [0, a - 1] (primitive
+** or free), or of [0, a] ending in a primitive (the two share sample a: a sampled
+** corner). Fields of c other than cost and start are set here. */
+static double before_start(size_t a, const cell *prim, const cell *fr, cell *c) {
+  double before = 0;
+  c->shared = 0, c->prev_free = 0;
+  if (a == 0) return 0;
+  before = prim[a - 1].cost;
+  if (fr[a - 1].cost < before) before = fr[a - 1].cost, c->prev_free = 1;
+  if (prim[a].cost < before) before = prim[a].cost, c->shared = 1, c->prev_free = 0;
+  return before;
+}
+
+/* The candidate starts of one kind's pieces: a binary heap of offsets, cheapest
+** before_start first, the later start first among equals (the shortest piece, as the
+** scan from the shortest piece up chose). Starts enter in increasing order once a piece
+** from them to j has the kind's minimum of distinct samples (a condition that, once
+** true, stays true as j grows); a start leaves when its run no longer reaches j (for
+** good: j only grows). O(m log m) for the cover, where a scan over every length was
+** O(m x longest run): quadratic on long sides. */
+typedef struct start_heap {
+  size_t *at;
+  double *key;
+  size_t n, next;
+} start_heap;
+
+static int heap_before(const start_heap *h, size_t x, size_t y) {
+  return h->key[x] < h->key[y] || (h->key[x] == h->key[y] && x > y);
+}
+
+static void heap_push(start_heap *h, size_t a) {
+  size_t i = h->n++;
+  while (i > 0 && heap_before(h, a, h->at[(i - 1) / 2])) {
+    h->at[i] = h->at[(i - 1) / 2];
+    i = (i - 1) / 2;
+  }
+  h->at[i] = a;
+}
+
+static void heap_pop(start_heap *h) {
+  size_t i = 0, last = h->at[--h->n];
+  for (;;) {
+    size_t c = 2 * i + 1;
+    if (c >= h->n) break;
+    if (c + 1 < h->n && heap_before(h, h->at[c + 1], h->at[c])) c++;
+    if (!heap_before(h, h->at[c], last)) break;
+    h->at[i] = h->at[c];
+    i = c;
+  }
+  if (h->n > 0) h->at[i] = last;
+}
+
+/* best piece of `kind` ending at offset j: its cost (HUGE_VAL when none) and start */
+static double best_of_kind(const section *s, size_t origin, size_t j, int kind,
+                           const size_t *len, const cell *prim, const cell *fr, start_heap *h,
+                           size_t *start) {
+  size_t minl = s->min_len[kind];
+  while (h->next + minl <= j + 1 && distinct(s, (origin + h->next) % s->m, j + 1 - h->next) >= minl) {
+    cell c;
+    h->key[h->next] = before_start(h->next, prim, fr, &c);
+    heap_push(h, h->next++);
+  }
+  while (h->n > 0 && len[(origin + h->at[0]) % s->m] < j + 1 - h->at[0]) heap_pop(h);
+  if (h->n == 0) return HUGE_VAL;
+  *start = h->at[0];
+  return h->key[h->at[0]] + COST[kind];
+}
+
+/* best primitive piece ending at offset j (into *c); a line wins a tie with an arc */
 static void best_primitive(const section *s, size_t origin, size_t j, size_t *const len[2],
-                           const size_t rmax[2], const cell *prim, const cell *fr, cell *c) {
+                           const cell *prim, const cell *fr, start_heap heaps[2], cell *c) {
   int kind;
   c->cost = HUGE_VAL;
   for (kind = LINE; kind <= ARC; kind++) {
-    size_t n, minl = s->min_len[kind];
-    for (n = minl; n <= j + 1 && n <= rmax[kind]; n++) {
-      size_t a = j + 1 - n;
-      double before = 0;
-      int shared = 0, pf = 0;
-      if (len[kind][(origin + a) % s->m] < n || distinct(s, (origin + a) % s->m, n) < minl)
-        continue;
-      if (a > 0) {
-        before = prim[a - 1].cost;
-        if (fr[a - 1].cost < before) before = fr[a - 1].cost, pf = 1;
-        if (prim[a].cost < before) before = prim[a].cost, shared = 1, pf = 0;
-      }
-      if (before + COST[kind] < c->cost) {
-        c->cost = before + COST[kind];
-        c->start = a;
-        c->kind = kind;
-        c->shared = shared;
-        c->prev_free = pf;
-      }
+    size_t a = 0;
+    double cost = best_of_kind(s, origin, j, kind, len[kind], prim, fr, &heaps[kind], &a);
+    if (cost < c->cost) {
+      before_start(a, prim, fr, c);
+      c->cost = cost;
+      c->start = a;
+      c->kind = kind;
     }
   }
 }
@@ -260,13 +328,14 @@ static void best_primitive(const section *s, size_t origin, size_t j, size_t *co
 /* The pieces (first/last sample, kind) of the cheapest cover of the M samples from
 ** origin, written backwards into out; returns their number. */
 static size_t cheapest_cover(const section *s, size_t origin, size_t *const len[2],
-                             const size_t rmax[2], cell *prim, cell *fr, bsfit_piece *out) {
+                             start_heap heaps[2], cell *prim, cell *fr, bsfit_piece *out) {
   size_t M = s->m, j, np = 0;
   int in_free;
+  heaps[0].n = heaps[0].next = heaps[1].n = heaps[1].next = 0;
   for (j = 0; j < M; j++) {
     double a = j > 0 ? fr[j - 1].cost + FREE_SAMPLE : HUGE_VAL;
     double b = (j > 0 ? prim[j - 1].cost : 0) + FREE_SAMPLE + FREE_RUN;
-    best_primitive(s, origin, j, len, rmax, prim, fr, &prim[j]);
+    best_primitive(s, origin, j, len, prim, fr, heaps, &prim[j]);
     fr[j].kind = FREE;
     fr[j].shared = 0;
     if (a <= b)
@@ -692,7 +761,8 @@ static void longest_runs(const section *s, size_t *const len[2], size_t rmax[2],
 /* The cheapest cover (pieces in order into p, from p[m + 1] as scratch). A closed
 ** section is cut where a piece starts: tried at the starts of the longest line and arc
 ** and at the samples after them, the cheapest kept. Returns the number of pieces. */
-static size_t cover(const section *s, size_t *const len[2], cell *prim, cell *fr, bsfit_piece *p) {
+static size_t cover(const section *s, size_t *const len[2], cell *prim, cell *fr,
+                    start_heap heaps[2], bsfit_piece *p) {
   size_t rmax[2], from[2], origins[4], no = 0, k, i, best_np = 0;
   double best = HUGE_VAL;
   longest_runs(s, len, rmax, from);
@@ -703,7 +773,7 @@ static size_t cover(const section *s, size_t *const len[2], cell *prim, cell *fr
     }
   if (no == 0) origins[no++] = 0;
   for (k = 0; k < no; k++) {
-    size_t np = cheapest_cover(s, origins[k], len, rmax, prim, fr, p + s->m + 1);
+    size_t np = cheapest_cover(s, origins[k], len, heaps, prim, fr, p + s->m + 1);
     double c = fr[s->m - 1].cost < prim[s->m - 1].cost ? fr[s->m - 1].cost : prim[s->m - 1].cost;
     if (c < best) {
       best = c;
@@ -896,6 +966,9 @@ bsfit_err bsfit_segment(const double *pts, size_t m, int dim, const bsfit_segmen
   cell *prim = NULL, *fr = NULL;
   bsfit_piece *buf = NULL;
   model *md = NULL;
+  start_heap heaps[2];
+  size_t *heap_at = NULL;
+  double *heap_key = NULL;
   bsfit_err e;
   memset(&o, 0, sizeof o);
   if (opts) o = *opts;
@@ -921,7 +994,9 @@ bsfit_err bsfit_segment(const double *pts, size_t m, int dim, const bsfit_segmen
   fr = bsfit__alloc(a, bsfit__mulsize(m, sizeof(cell)));
   buf = bsfit__alloc(a, bsfit__mulsize(2 * m + 2, sizeof(bsfit_piece)));
   md = bsfit__alloc(a, bsfit__mulsize(2 * m + 2, sizeof(model)));
-  if (!s.gaps || !len[0] || !len[1] || !prim || !fr || !buf || !md) {
+  heap_at = bsfit__alloc(a, bsfit__mulsize(2 * m, sizeof(size_t)));
+  heap_key = bsfit__alloc(a, bsfit__mulsize(2 * m, sizeof(double)));
+  if (!s.gaps || !len[0] || !len[1] || !prim || !fr || !buf || !md || !heap_at || !heap_key) {
     e = bsfit__fail(st, BSFIT_ENOMEM, "out of memory for the segmentation of %zu points", m);
     goto done;
   }
@@ -931,7 +1006,9 @@ bsfit_err bsfit_segment(const double *pts, size_t m, int dim, const bsfit_segmen
     e = bsfit__fail(st, e, "segmentation interrupted");
     goto done;
   }
-  np = cover(&s, len, prim, fr, buf);
+  heaps[0].at = heap_at, heaps[0].key = heap_key;
+  heaps[1].at = heap_at + m, heaps[1].key = heap_key + m;
+  np = cover(&s, len, prim, fr, heaps, buf);
   np = finish_pieces(&s, buf, md, np);
   for (i = 0; i < np && i < cap; i++) pieces[i] = buf[i];
   *count = np;
@@ -944,5 +1021,7 @@ done:
   bsfit__free(a, fr, fr ? m * sizeof(cell) : 0);
   bsfit__free(a, buf, buf ? (2 * m + 2) * sizeof(bsfit_piece) : 0);
   bsfit__free(a, md, md ? (2 * m + 2) * sizeof(model) : 0);
+  bsfit__free(a, heap_at, heap_at ? 2 * m * sizeof(size_t) : 0);
+  bsfit__free(a, heap_key, heap_key ? 2 * m * sizeof(double) : 0);
   return e;
 }
