@@ -207,19 +207,28 @@ static void poly_derivs(foot_ctx *F, size_t s, double u, double *D) {
 
 /* C, C', C'' at u (D: 3*dim) and |C(u) - P|^2. `poly2`: the curve is 2D and F->poly is
 ** set, a constant in the instances below, so the hot case compiles to straight code. */
-GEOM_INLINE double foot_eval(foot_ctx *F, double u, double *D, const int poly2) {
+/* Where u is evaluated: *w, u wrapped into the period (periodic), in span F->s, set
+** here: the same span as the last evaluation, or a neighbour (samples in order, Newton's
+** steps), before a search over all the knots. */
+GEOM_INLINE size_t foot_span(foot_ctx *F, double u, double *w) {
   const bsfit_curve *c = F->c;
   const double *U = c->knots;
-  size_t q, d = poly2 ? 2 : (size_t)c->dim, s = F->s;
-  double w = (u >= F->a && u < F->b) ? u : bsfit__curve_wrap(c, u), d2 = 0.0;
-  /* the same span as the last evaluation, or a neighbour (samples in order, Newton's
-  ** steps), before a search over all the knots */
-  if (!(w >= U[s] && w < U[s + 1])) {
-    if (s + 1 < c->n && w >= U[s + 1] && w < U[s + 2]) s++;
-    else if (s > (size_t)c->degree && w >= U[s - 1] && w < U[s]) s--;
-    else s = bsfit_knots_find_span(U, c->n, c->degree, w);
+  size_t s = F->s;
+  *w = (u >= F->a && u < F->b) ? u : bsfit__curve_wrap(c, u);
+  if (!(*w >= U[s] && *w < U[s + 1])) {
+    if (s + 1 < c->n && *w >= U[s + 1] && *w < U[s + 2]) s++;
+    else if (s > (size_t)c->degree && *w >= U[s - 1] && *w < U[s]) s--;
+    else s = bsfit_knots_find_span(U, c->n, c->degree, *w);
   }
   F->s = s;
+  return s;
+}
+
+GEOM_INLINE double foot_eval(foot_ctx *F, double u, double *D, const int poly2) {
+  const bsfit_curve *c = F->c;
+  size_t q, d = poly2 ? 2 : (size_t)c->dim;
+  double w, d2 = 0.0;
+  size_t s = foot_span(F, u, &w);
   if (poly2) poly_derivs_d(F, s, w, D, 2);
   else if (F->poly) poly_derivs(F, s, w, D);
   else bsfit__curve_derivs_span(c, s, w, 2, D);
@@ -286,6 +295,29 @@ static double foot_newton(foot_ctx *F, double u, int iters, double *d2) {
 /* the samples of the closest-point searches: C(u) and its derivatives into D (3*dim
 ** doubles); returns |C(u) - F->P|^2 */
 static double sample_at(foot_ctx *F, double u, double *D) { return foot_eval(F, u, D, 0); }
+
+/* C(u) alone into x (dim doubles), as sample_at computes it: a polynomial cubic's span by
+** the same Horner sum (its derivatives, which sampling does not need, are two thirds of
+** the work), any other curve through sample_at. */
+static void sample_point(foot_ctx *F, double u, double *x) {
+  double D[3 * 4], w;
+  size_t q, d = (size_t)F->c->dim, s;
+  if (F->poly == NULL) {
+    (void)sample_at(F, u, D);
+    memcpy(x, D, d * sizeof(double));
+    return;
+  }
+  s = foot_span(F, u, &w);
+  {
+    const double *U = F->c->knots, *cf = F->poly->coef + s * 4 * d;
+    double hinv = 1.0 / (U[s + 1] - U[s]), t = (w - U[s]) * hinv;
+    if (!F->poly->ready[s]) {
+      bsfit__cubic_span_poly(F->c, s, F->poly->coef + s * 4 * d);
+      F->poly->ready[s] = 1;
+    }
+    for (q = 0; q < d; q++) x[q] = ((cf[3 * d + q] * t + cf[2 * d + q]) * t + cf[d + q]) * t + cf[q];
+  }
+}
 
 /* Newton from the best sample v (step h apart from its neighbours). At a knot where the
 ** curve may turn (multiplicity >= degree: C0 or less) the derivative seen from one side
@@ -398,16 +430,13 @@ static bsfit_err closest_loop(foot_ctx *F, const bsfit__nearest *nn, const sampl
 /* The samples of every span of positive length into smp (K*dim), the spans into spans. */
 static void sample_spans(foot_ctx *F, size_t *spans, double *smp) {
   const bsfit_curve *c = F->c;
-  double D[3 * 4];
   size_t s, i, k = 0, g = 0, d = (size_t)c->dim;
   for (s = (size_t)c->degree; s < c->n; s++) {
     double h = (c->knots[s + 1] - c->knots[s]) / CLOSEST_SAMPLES;
     if (!(h > 0)) continue;
     spans[g++] = s;
-    for (i = 0; i <= CLOSEST_SAMPLES; i++, k++) {
-      (void)sample_at(F, c->knots[s] + h * (double)i, D);
-      memcpy(smp + k * d, D, d * sizeof(double));
-    }
+    for (i = 0; i <= CLOSEST_SAMPLES; i++, k++)
+      sample_point(F, c->knots[s] + h * (double)i, smp + k * d);
   }
 }
 
