@@ -146,7 +146,23 @@ typedef struct foot_ctx {
   span_polys *poly; /* NULL: the basis path */
   size_t s;         /* the last span used */
   double a, b;      /* the domain */
+  int corners;      /* some knot has multiplicity >= degree (C0 or less) inside */
 } foot_ctx;
+
+/* whether c has a knot of multiplicity >= degree (a corner is possible there) inside its
+** domain (an open curve's clamped ends are none) */
+static int has_corners(const bsfit_curve *c) {
+  size_t j, run = 1, nk = c->n + (size_t)c->degree + 1;
+  double a, b;
+  if (c->degree <= 1) return 1; /* every knot */
+  bsfit_curve_domain(c, &a, &b);
+  for (j = 1; j < nk; j++) {
+    run = c->knots[j] == c->knots[j - 1] ? run + 1 : 1;
+    if ((int)run >= c->degree && (c->periodic || (c->knots[j] > a && c->knots[j] < b)))
+      return 1;
+  }
+  return 0;
+}
 
 static void foot_init(foot_ctx *F, const bsfit_curve *c, span_polys *poly) {
   F->c = c;
@@ -154,6 +170,7 @@ static void foot_init(foot_ctx *F, const bsfit_curve *c, span_polys *poly) {
   F->poly = poly;
   F->s = (size_t)c->degree;
   bsfit_curve_domain(c, &F->a, &F->b);
+  F->corners = has_corners(c);
 }
 
 /* Room for the span polynomials of a polynomial cubic; NULL when c is not one or out of
@@ -323,7 +340,7 @@ static void sample_point(foot_ctx *F, double u, double *x) {
 ** curve may turn (multiplicity >= degree: C0 or less) the derivative seen from one side
 ** cannot lead to a foot on the other: there the descent also starts half a sample step
 ** to either side, and the nearest of the three feet wins. */
-static double closest_from(foot_ctx *F, double v, double h, int maybe_knot, double *d2) {
+static double closest_from_start(foot_ctx *F, double v, double h, int maybe_knot, double *d2) {
   const bsfit_curve *c = F->c;
   double u = foot_newton(F, v, NEWTON_MAX_ITERS, d2);
   int side;
@@ -336,6 +353,83 @@ static double closest_from(foot_ctx *F, double v, double h, int maybe_knot, doub
     x = foot_newton(F, w, NEWTON_MAX_ITERS, &e2);
     if (e2 < *d2) *d2 = e2, u = x;
   }
+  return u;
+}
+
+/* The knots of c where it may turn (multiplicity >= degree: C0 or less) inside [lo, hi],
+** at most `max` of them, into cut (distinct values, increasing); returns their number. */
+static size_t corner_knots(const bsfit_curve *c, double lo, double hi, double *cut, size_t max) {
+  const double *U = c->knots;
+  size_t nk = c->n + (size_t)c->degree + 1, j = 0, k = 0, hi_j = nk;
+  while (hi_j - j > 1) { /* the first knot >= lo, by bisection */
+    size_t mid = j + (hi_j - j) / 2;
+    if (U[mid - 1] < lo) j = mid;
+    else hi_j = mid;
+  }
+  if (j < nk && U[j] < lo) j++;
+  while (j < nk && U[j] <= hi && k < max) {
+    size_t r = j;
+    while (r < nk && U[r] == U[j]) r++;
+    if ((int)(r - j) >= c->degree) cut[k++] = U[j];
+    j = r;
+  }
+  return k;
+}
+
+#define CORNER_CUTS 8 /* corners in one bracket looked at, at most */
+
+/* A sample at a knot brackets its search by its own span's step; the span on the knot's
+** other side may be far longer (a corner between a short span and a long one), its foot
+** beyond that step. [*lo, *hi] is widened to a sample step of the span on either side. */
+static void widen_at_knot(const foot_ctx *F, double v, double *lo, double *hi) {
+  const bsfit_curve *c = F->c;
+  const double *U = c->knots;
+  size_t p = (size_t)c->degree, s = bsfit_knots_find_span(U, c->n, c->degree, v), j = s;
+  if (v != U[s] && v != U[s + 1]) return;
+  *hi = fmax(*hi, v + (U[s + 1] - U[s]) / CLOSEST_SAMPLES);
+  while (j > 0 && U[j - 1] == U[s]) j--;
+  if (j > 0 && j > p - 1) *lo = fmin(*lo, v - (U[s] - U[j - 1]) / CLOSEST_SAMPLES);
+  if (!c->periodic) {
+    *lo = fmax(*lo, F->a);
+    *hi = fmin(*hi, F->b);
+  }
+}
+
+/* Newton from the nearest sample v (step h apart from its neighbours) inside the bracket
+** [F->lo, F->hi]. Newton sees the derivative on one side of a corner only, and a step that
+** lands across it with a smaller distance carries the descent to the wrong side: near a
+** corner of a curve (auto's C0 knots) the foot came back up to 10 times too far. So when
+** the bracket holds a corner, the descent also runs in each piece between corners, kept
+** inside it, from its ends and its middle; the nearest foot of all wins, never
+** worse than the unrestricted descent, which still runs first (bit for bit the answer on
+** curves without corners, whose brackets hold none). */
+static double closest_from(foot_ctx *F, double v, double h, int maybe_knot, double *d2) {
+  double cut[CORNER_CUTS + 2], lo = F->lo, hi = F->hi, u;
+  size_t nc, i;
+  u = closest_from_start(F, v, h, maybe_knot, d2);
+  if (!F->corners) return u;
+  widen_at_knot(F, v, &lo, &hi);
+  nc = corner_knots(F->c, lo, hi, cut + 1, CORNER_CUTS);
+  if (nc == 0) return u;
+  cut[0] = lo;
+  cut[nc + 1] = hi;
+  for (i = 0; i <= nc; i++) {
+    double a = cut[i], b = cut[i + 1], e2, x;
+    int k;
+    if (!(b > a)) continue;
+    F->lo = a;
+    F->hi = b;
+    /* from both ends and the middle (a piece may hold a second basin); at a knot the
+    ** curve is evaluated in the span after it, so the piece that ends there starts just
+    ** before it, where the derivative is its own */
+    for (k = 0; k < 3; k++) {
+      x = foot_newton(F, k == 0 ? a : (k == 1 ? 0.5 * (a + b) : b - 1e-9 * (b - a)),
+                      NEWTON_MAX_ITERS, &e2);
+      if (e2 < *d2) *d2 = e2, u = x;
+    }
+  }
+  F->lo = lo;
+  F->hi = hi;
   return u;
 }
 
