@@ -222,8 +222,6 @@ static void poly_derivs(foot_ctx *F, size_t s, double u, double *D) {
 #  define GEOM_INLINE static inline
 #endif
 
-/* C, C', C'' at u (D: 3*dim) and |C(u) - P|^2. `poly2`: the curve is 2D and F->poly is
-** set, a constant in the instances below, so the hot case compiles to straight code. */
 /* Where u is evaluated: *w, u wrapped into the period (periodic), in span F->s, set
 ** here: the same span as the last evaluation, or a neighbour (samples in order, Newton's
 ** steps), before a search over all the knots. */
@@ -241,6 +239,8 @@ GEOM_INLINE size_t foot_span(foot_ctx *F, double u, double *w) {
   return s;
 }
 
+/* C, C', C'' at u (D: 3*dim) and |C(u) - P|^2. `poly2`: the curve is 2D and F->poly is
+** set, a constant in the instances below, so the hot case compiles to straight code. */
 GEOM_INLINE double foot_eval(foot_ctx *F, double u, double *D, const int poly2) {
   const bsfit_curve *c = F->c;
   size_t q, d = poly2 ? 2 : (size_t)c->dim;
@@ -332,7 +332,8 @@ static void sample_point(foot_ctx *F, double u, double *x) {
       bsfit__cubic_span_poly(F->c, s, F->poly->coef + s * 4 * d);
       F->poly->ready[s] = 1;
     }
-    for (q = 0; q < d; q++) x[q] = ((cf[3 * d + q] * t + cf[2 * d + q]) * t + cf[d + q]) * t + cf[q];
+    for (q = 0; q < d; q++)
+      x[q] = ((cf[3 * d + q] * t + cf[2 * d + q]) * t + cf[d + q]) * t + cf[q];
   }
 }
 

@@ -5,7 +5,8 @@ local T = require "tap"
 local bs = require "bsfit"
 local synth = require "synth"
 
-local SRC = (arg and arg[1] or ""):match("^(.*)/tests/lua/[^/]*$") or os.getenv("BSFIT_SOURCE_DIR") or "."
+local SRC = (arg and arg[1] or ""):match("^(.*)/tests/lua/[^/]*$")
+            or os.getenv("BSFIT_SOURCE_DIR") or "."
 
 -- the reference: runs of equal consecutive values, counted in Lua (a NaN equals nothing)
 local function runs(t)

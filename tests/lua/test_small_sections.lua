@@ -16,7 +16,8 @@ local function sections()
     for name, f in pairs(synth.smooth) do
       for _, sigma in ipairs { 0, 0.001, 0.05 } do
         for seed = 1, 2 do
-          local P = synth.noisy(synth.sample_smooth(f, m, seed == 2), sigma, seed * 31 + m):totable()
+          local P = synth.noisy(synth.sample_smooth(f, m, seed == 2), sigma, seed * 31 + m)
+          P = P:totable()
           out[#out + 1] = { ("%s m=%d sigma=%g seed %d"):format(name, m, sigma, seed), P }
           local Q = {}
           for i = 1, #P do

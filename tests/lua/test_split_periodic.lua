@@ -75,7 +75,8 @@ T.test("a periodic curve cut at its knots has no sliver span and the same trace"
            .. "curve's narrowest %.3g)"):format(p, N, t, h, narrowest))
       local a, b = L:domain()
       T.ok(math.abs((b - a) - period) <= 1e-12 * (math.abs(a) + period), "one period")
-      T.ok(same_trace(C, L, t, period, 10), ("degree %d, cut at %.17g: the same trace"):format(p, t))
+      T.ok(same_trace(C, L, t, period, 10),
+           ("degree %d, cut at %.17g: the same trace"):format(p, t))
       cuts = cuts + 1
     end
     -- anywhere: the same trace
