@@ -7,6 +7,7 @@
 */
 #include "curve_ops_internal.h"
 
+#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -177,6 +178,21 @@ static bsfit_err open_piece(const bsfit_curve *c, double lo, double hi, bsfit_cu
   return e;
 }
 
+/* x moved onto the knot of U (nk sorted values) within a few ulps of it, if any: u + T
+** rounds differently from the knot one period on (stored or unrolled as knot + T, and the
+** period T itself rounded), and a cut an ulp beside a knot leaves a span an ulp wide. */
+static double snap_to_knot(const double *U, size_t nk, double x, double T) {
+  double tol = 8.0 * DBL_EPSILON * (fabs(x) + fabs(T));
+  size_t lo = 0, hi = nk; /* the first knot >= x - tol, by bisection */
+  while (lo < hi) {
+    size_t mid = lo + (hi - lo) / 2;
+    if (U[mid] < x - tol) lo = mid + 1;
+    else hi = mid;
+  }
+  if (lo < nk && fabs(U[lo] - x) <= tol) return U[lo];
+  return x;
+}
+
 /* One period [u, u+T] of a periodic curve as an open clamped curve that starts and ends
 ** at the same point. */
 static bsfit_err periodic_piece(const bsfit_curve *c, double u, bsfit_curve *out,
@@ -188,7 +204,11 @@ static bsfit_err periodic_piece(const bsfit_curve *c, double u, bsfit_curve *out
   bsfit_curve_domain(c, &a, &b);
   bsfit__hc_init(&piece);
   e = bsfit__hc_unroll(c, &h, st);
-  if (e == BSFIT_OK) e = bsfit__hc_piece(&h, u, u + (b - a), &piece, st);
+  if (e == BSFIT_OK) {
+    size_t nk = h.n + (size_t)h.p + 1;
+    e = bsfit__hc_piece(&h, snap_to_knot(h.U, nk, u, b - a),
+                        snap_to_knot(h.U, nk, u + (b - a), b - a), &piece, st);
+  }
   if (e == BSFIT_OK) e = bsfit__hc_to_curve(&piece, c->dim, out, st);
   if (e == BSFIT_OK) { /* equal up to rounding: make the closure exact */
     last = out->n - 1;

@@ -89,13 +89,13 @@ static void share_knots(const double *len, size_t np, double m, size_t K, size_t
   }
 }
 
-/* The guard: walks the spans in order and merges each span holding fewer than two
+/* The guard: walks the spans in order and merges each span holding fewer than `need`
 ** parameters into its neighbour, by removing the simple knot between them (the next
 ** one; or, when the next is a corner or the period's end, the span's own start).
 ** knots[0], the period start, stays. The points are walked from index s0, whose
 ** parameters lie in [t0, t0 + 1). Returns the new number of knots. */
 static size_t guard_spans(const double *u, size_t m, size_t s0, double t_end, knot *knots,
-                          size_t nk) {
+                          size_t nk, size_t need) {
   size_t q = s0, k, w = 1, c = 0;
   for (k = 0; k < nk; k++) {
     double hi = k + 1 < nk ? knots[k + 1].t : t_end;
@@ -103,8 +103,8 @@ static size_t guard_spans(const double *u, size_t m, size_t s0, double t_end, kn
       q++;
       c++;
     }
-    if (k + 1 < nk && c < 2 && !knots[k + 1].corner) continue; /* drop knots[k+1] */
-    if (c < 2 && w > 1 && !knots[w - 1].corner) w--;        /* drop the span's start */
+    if (k + 1 < nk && c < need && !knots[k + 1].corner) continue; /* drop knots[k+1] */
+    if (c < need && w > 1 && !knots[w - 1].corner) w--;        /* drop the span's start */
     if (k + 1 < nk) knots[w++] = knots[k + 1];
     c = 0;
   }
@@ -126,10 +126,52 @@ static size_t place_with_corners(const double *u, size_t m, int p, size_t n_targ
   return nk;
 }
 
-/* writes the period (corners as p copies) and its N; 0 when too few spans remain */
-static size_t write_period(const knot *knots, size_t nk, int p, double t0, double *period) {
+/* the number of control points of the period: corners count p */
+static size_t period_count(const knot *knots, size_t nk, int p) {
   size_t i, N = 0;
   for (i = 0; i < nk; i++) N += knots[i].corner ? (size_t)p : 1;
+  return N;
+}
+
+/* The knots before the guard: n_target of them, corners at the kept breaks; *t0 the period
+** start, *s0 the first point at or after it. Returns their number. */
+static size_t place_all(const double *u, size_t m, int p, size_t n_target, const double *kept,
+                        size_t nbk, double *len, size_t *share, knot *knots, double *t0,
+                        size_t *s0) {
+  if (nbk == 0) { /* one piece around the whole period; u[0] itself is a simple knot */
+    *t0 = u[0];
+    *s0 = 0;
+    knots[0].t = *t0;
+    knots[0].corner = 0;
+    return 1 + place_piece(u, m, 0.0, (double)m, n_target - 1, knots + 1);
+  }
+  *t0 = interp(u, m, kept[0]);
+  *s0 = (size_t)ceil(kept[0]); /* the first point at or after the first corner */
+  return place_with_corners(u, m, p, n_target, kept, nbk, len, share, knots);
+}
+
+/* The last resort of a section without corners: a knot at each of up to n_target distinct
+** parameters, evenly among them by index, so that every span holds one (and its
+** repeats). Returns their number (below n_target when fewer are distinct). */
+static size_t place_at_params(const double *u, size_t m, size_t n_target, knot *knots) {
+  size_t i, D = 0, j = 0, k = 0, N;
+  for (i = 0; i < m; i++)
+    if (i == 0 || u[i] > u[i - 1]) D++;
+  N = n_target < D ? n_target : D;
+  for (i = 0; i < m && k < N; i++) {
+    if (i > 0 && !(u[i] > u[i - 1])) continue;
+    if (j == k * D / N) {
+      knots[k].t = u[i];
+      knots[k++].corner = 0;
+    }
+    j++;
+  }
+  return k;
+}
+
+/* writes the period (corners as p copies) and its N; 0 when too few spans remain */
+static size_t write_period(const knot *knots, size_t nk, int p, double t0, double *period) {
+  size_t i, N = period_count(knots, nk, p);
   if (N < (size_t)p + 1 || N < 2) return 0;
   N = 0;
   for (i = 0; i < nk; i++) {
@@ -162,19 +204,20 @@ bsfit_err bsfit_knots_place_breaks(const double *u, size_t m, int p, size_t n_ta
                     n_target, p, nbk);
     goto done;
   }
-  if (nbk == 0) {
-    /* one piece around the whole period; u[0] itself is a simple knot */
+  nk = place_all(u, m, p, n_target, kept, nbk, len, share, knots, &t0, &s0);
+  nk = guard_spans(u, m, s0, t0 + 1.0, knots, nk, 2);
+  if (period_count(knots, nk, p) < (size_t)p + 1) {
+    /* few points (fewer than 2 (p + 1)): two parameters in every span leave too few
+    ** spans; one in every span still fits (m >= N points interlacing the knots) */
+    nk = place_all(u, m, p, n_target, kept, nbk, len, share, knots, &t0, &s0);
+    nk = guard_spans(u, m, s0, t0 + 1.0, knots, nk, 1);
+  }
+  if (period_count(knots, nk, p) < (size_t)p + 1 && nbk == 0) {
+    /* repeated points crowd the averaged knots together: a knot at distinct parameters */
+    nk = place_at_params(u, m, n_target, knots);
     t0 = u[0];
     s0 = 0;
-    knots[0].t = t0;
-    knots[0].corner = 0;
-    nk = 1 + place_piece(u, m, 0.0, (double)m, n_target - 1, knots + 1);
-  } else {
-    t0 = interp(u, m, kept[0]);
-    s0 = (size_t)ceil(kept[0]); /* the first point at or after the first corner */
-    nk = place_with_corners(u, m, p, n_target, kept, nbk, len, share, knots);
   }
-  nk = guard_spans(u, m, s0, t0 + 1.0, knots, nk);
   N = write_period(knots, nk, p, t0, period);
   if (N == 0) {
     e = bsfit__fail(st, BSFIT_ETOOFEW, "%zu points leave too few knot spans for degree %d", m, p);

@@ -85,6 +85,14 @@ static int auto_knots_breaks(lua_State *L) {
     e = bsfit_knots_place_breaks(u->x, u->n, (int)p, (size_t)n, bv->x, bv->n, scratch->x, &N,
                                  &a, &st);
   }
+  /* too few points for the spans a fit needs is the data's outcome, not a misuse: the
+  ** fail triple, for the strategy to report */
+  if (e == BSFIT_ETOOFEW) {
+    luaL_pushfail(L);
+    lua_pushstring(L, st.msg);
+    lua_pushstring(L, bsfit_errname(e));
+    return 3;
+  }
   if (e != BSFIT_OK) return bsfit__lua_result(L, e, &st, 0, 1);
   /* the guard may have merged spans: the result has the N + 1 knots actually placed */
   period = bsfit__lua_allocvector(L, N + 1);

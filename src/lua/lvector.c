@@ -173,6 +173,18 @@ static int extreme(lua_State *L, double sign) {
 static int vector_max(lua_State *L) { return extreme(L, 1.0); }
 static int vector_min(lua_State *L) { return extreme(L, -1.0); }
 
+/* v:distinct(): the number of runs of equal consecutive values, the number of distinct
+** values when v is sorted (parameters of points that coincide are equal); 0 when empty.
+** A NaN equals nothing, so each counts. */
+static int vector_distinct(lua_State *L) {
+  bsfit_vector_ud *v = checkvector(L, 1);
+  size_t i, n = v->n > 0;
+  for (i = 1; i < v->n; i++)
+    if (v->x[i] != v->x[i - 1]) n++;
+  lua_pushinteger(L, (lua_Integer)n);
+  return 1;
+}
+
 static int vector_copy(lua_State *L) {
   bsfit_vector_ud *v = checkvector(L, 1);
   bsfit_vector_ud *w = bsfit__lua_newvector(L, v->n);
@@ -200,7 +212,7 @@ static int vector_tostring(lua_State *L) {
 static const luaL_Reg vector_meth[] = {
   {"get", vector_get}, {"set", vector_set}, {"totable", vector_totable},
   {"bytes", vector_bytes}, {"sum", vector_sum}, {"rms", vector_rms}, {"max", vector_max},
-  {"min", vector_min}, {"copy", vector_copy}, {NULL, NULL}};
+  {"min", vector_min}, {"copy", vector_copy}, {"distinct", vector_distinct}, {NULL, NULL}};
 
 static const luaL_Reg vector_metameth[] = {
   {"__index", NULL}, {"__len", vector_len}, {"__tostring", vector_tostring}, {NULL, NULL}};

@@ -4,23 +4,12 @@
 -- a D of 20, a rounded rectangle of 60 with noise 1e-4 of its size, 3000 exact points
 -- of a gear), which take the segmentation path.
 --   bsfit tests/bench/bench_auto.lua
+package.path = (arg[0]:match("^(.*)/[^/]*$") or ".") .. "/?.lua;" .. package.path
 local bs = require "bsfit"
 local auto = require "bsfit.strategy.auto"
+local bench = require "benchlib"
 
-local clock = (bs.parallel and bs.parallel.clock) or os.clock
-
--- a noisy star-like section of m points (noise 0.2% of the size)
-local function section(m, seed)
-  local t, s = {}, seed or 1
-  local function rnd() s = (s * 1103515245 + 12345) % 2147483648; return (s + 0.5) / 2147483648 end
-  local function gauss() return math.sqrt(-2 * math.log(rnd())) * math.cos(2 * math.pi * rnd()) end
-  for k = 0, m - 1 do
-    local a = 2 * math.pi * k / m
-    local r = 1 + 0.15 * math.cos(5 * a)
-    t[#t + 1] = { r * math.cos(a) + 0.004 * gauss(), r * math.sin(a) + 0.004 * gauss() }
-  end
-  return bs.points.new(t)
-end
+local clock, section = bench.clock, bench.section
 
 local function time(f, budget)
   f()

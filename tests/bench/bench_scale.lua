@@ -3,21 +3,10 @@
 -- shows whether the work stays within m log m. carvalho also with its start-point
 -- search unbounded (candidates = "all"), up to 10^4 points.
 --   bsfit tests/bench/bench_scale.lua [MAX_EXPONENT]   (default 6)
-local bs = require "bsfit"
+package.path = (arg[0]:match("^(.*)/[^/]*$") or ".") .. "/?.lua;" .. package.path
+local bench = require "benchlib"
 
-local clock = (bs.parallel and bs.parallel.clock) or os.clock
-
-local function section(m, seed)
-  local t, s = {}, seed or 1
-  local function rnd() s = (s * 1103515245 + 12345) % 2147483648; return (s + 0.5) / 2147483648 end
-  local function gauss() return math.sqrt(-2 * math.log(rnd())) * math.cos(2 * math.pi * rnd()) end
-  for k = 0, m - 1 do
-    local a = 2 * math.pi * k / m
-    local r = 1 + 0.15 * math.cos(5 * a)
-    t[#t + 1] = { r * math.cos(a) + 0.004 * gauss(), r * math.sin(a) + 0.004 * gauss() }
-  end
-  return bs.points.new(t)
-end
+local clock, section = bench.clock, bench.section
 
 local maxe = tonumber(arg and arg[1]) or 6
 local runs = {

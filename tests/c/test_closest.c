@@ -136,6 +136,37 @@ static void test_index_matches_scan_on_ties(void **state) {
       }
 }
 
+static void test_index_matches_scan_on_large_curve_like_sets(void **state) {
+  /* given large sample sets laid out as a curve's are (a closed loop sampled in order,
+  ** smooth or zigzagging across a band as a fit through noise does, with each run's end
+  ** repeated as the next one's start; and the same coordinates rounded to a coarse
+  ** lattice, full of ties), of sizes where the build samples its pivots and partitions by
+  ** blocks, when the nearest sample of each query is looked up, then it is the scan's */
+  static double smp[120000 * 3];
+  static const size_t sizes[] = {5000, 40000, 120000};
+  test_rng r = {777};
+  size_t si, k, d;
+  int kind;
+  (void)state;
+  for (d = 2; d <= 3; d++)
+    for (si = 0; si < sizeof sizes / sizeof sizes[0]; si++)
+      for (kind = 0; kind < 3; kind++) {
+        size_t K = sizes[si];
+        for (k = 0; k < K; k++) {
+          size_t run = k / 9, i = k % 9, q;
+          double t = 6.283185307179586 * ((double)run + (double)i / 8.0) / (double)(K / 9 + 1);
+          double zig = kind >= 1 ? 0.01 * (double)(i & 1 ? 1 : -1) * (double)(i % 4) : 0.0;
+          double x[3];
+          x[0] = (1.0 + zig) * cos(t) * (1.0 + 0.2 * cos(5.0 * t));
+          x[1] = (1.0 + zig) * sin(t) * (1.0 + 0.2 * cos(5.0 * t));
+          x[2] = 0.1 * sin(3.0 * t);
+          for (q = 0; q < d; q++)
+            smp[k * d + q] = kind == 2 ? floor(x[q] * 64.0) / 64.0 : x[q];
+        }
+        check_index(&r, smp, K, d, K);
+      }
+}
+
 /* }==================================================================== */
 
 /* {====================================================================
@@ -316,6 +347,7 @@ static void test_errors(void **state) {
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_index_matches_scan_on_ties),
+      cmocka_unit_test(test_index_matches_scan_on_large_curve_like_sets),
       cmocka_unit_test(test_many_equals_closest_bitwise),
       cmocka_unit_test(test_exact_ties_on_a_polyline),
       cmocka_unit_test(test_errors),

@@ -54,11 +54,21 @@ function M.line_foot(x, o, d)
   return math.sqrt(dist2), foot
 end
 
+-- What the fitter said about each curve it made (rcond, solver), for the report: keyed
+-- weakly by the curve; `last_fit` is the latest fit's, for curves no fit made directly.
+local fit_info = setmetatable({}, { __mode = "k" })
+local last_fit
+
 -- Returns v, or raises "<what> failed: msg (CODE)" when v is the fail triple of
--- a numerical outcome (STYLE R3).
+-- a numerical outcome (STYLE R3). When v is a fitter's curve and msg its report, keeps
+-- the report's rcond and solver for M.report.
 function M.ok(what, v, msg, code)
   if not v then
     error(("%s failed: %s%s"):format(what, tostring(msg), code and (" (" .. code .. ")") or ""), 0)
+  end
+  if type(msg) == "table" and msg.rcond ~= nil and M.is_curve(v) then
+    last_fit = { rcond = msg.rcond, solver = msg.solver }
+    fit_info[v] = last_fit
   end
   return v, msg
 end
@@ -304,7 +314,7 @@ end
 -- that coincide share a parameter (bs.params), and a fit cannot have more control
 -- points than distinct parameters.
 function M.distinct_params(u)
-  if type(u) ~= "table" then u = u:totable() end
+  if type(u) ~= "table" then return u:distinct() end
   local n, last = 0, nil
   for i = 1, #u do
     if u[i] ~= last then n, last = n + 1, u[i] end
@@ -349,13 +359,9 @@ end
 -- sampled once, each point bracketed by its nearest sample and refined by Newton.
 function M.deviations(C, P)
   local _, dv = C:closest_many(P)
-  local d = dv:totable()
-  local m, sum, max, imax = #P, 0, -1, 1
-  for i = 1, m do
-    sum = sum + d[i] * d[i]
-    if d[i] > max then max, imax = d[i], i end
-  end
-  return d, math.sqrt(sum / m), max, imax
+  -- the RMS and the first maximum in C (the same sums in the same order as a Lua loop)
+  local max, imax = dv:max()
+  return dv:totable(), dv:rms(), max, imax
 end
 
 -- }======================================================================
@@ -643,6 +649,7 @@ function M.run(strategy, P, opts, notes)
   M.check_count(strategy, P, opts, settings)
   local ctx = { strategy = strategy, opts = opts, settings = settings,
                 P = P, times = {}, cache = {}, warnings = {} }
+  last_fit = nil -- a fit of an earlier run says nothing of this one
   local t0 = clock()
   for _, name in ipairs(strategy.order) do
     local v = M.call(ctx, name, ctx.P)
@@ -650,6 +657,7 @@ function M.run(strategy, P, opts, notes)
     if M.is_curve(v) then ctx.curve = v end
   end
   M.check_count_honoured(strategy, opts, ctx.curve)
+  ctx.fitted = ctx.curve
   if opts.smooth ~= nil then
     local t1 = clock()
     ctx.smoothing = M.smooth_curve(ctx, opts.smooth)
@@ -747,6 +755,11 @@ function M.report(ctx)
   rep.times = ctx.times
   rep.total_ms = ctx.total_ms
   rep.smoothing = ctx.smoothing
+  -- the fit that made the curve (before smoothing), else the fit that the curve was
+  -- built from (carvalho's closing), else the run's last fit (auto's assembled pieces)
+  local f = fit_info[ctx.fitted or ctx.curve] or (M.is_curve(ctx.fit) and fit_info[ctx.fit])
+            or last_fit
+  if f then rep.rcond, rep.solver = f.rcond, f.solver end
   return rep
 end
 
