@@ -81,7 +81,7 @@ T.test("bs.knots.breaks on few points: every span holds a parameter, or ETOOFEW"
   T.ok(placed > 1000, ("%d placed, %d refused"):format(placed, refused))
 end)
 
-T.test("auto on few points: a fit or a clean failure, never 'breaks' argument errors", function()
+T.test("auto on few points: a fit or a clean failure, never a raised error", function()
   local auto = require "bsfit.strategy.auto"
   local fitted = 0
   for _, sec in ipairs(sections()) do
@@ -95,6 +95,10 @@ T.test("auto on few points: a fit or a clean failure, never 'breaks' argument er
           T.ok(x == x and y == y and math.abs(x) < 1e9 and math.abs(y) < 1e9, sec[1] .. ": finite")
         end
       else
+        -- a section auto cannot fit is the fail triple, never a raised error (repeated
+        -- samples in a free run raised "knots ... multiplicity above degree+1" from
+        -- sharp.lua, 6 exact samples of a circle "noise estimate failed")
+        T.ok(ok, sec[1] .. ": raised " .. tostring(C))
         T.ok(not tostring(C):find("to 'breaks'", 1, true), sec[1] .. ": " .. tostring(C))
       end
     end

@@ -463,7 +463,14 @@ end
 function steps.sigma(P, ctx)
   if #P < 6 then return 0 end
   local sub = subsample(ctx, P)
-  return common.ok("noise estimate", bs.geom.noise_sigma(sub and sub.P or P, { closed = closed(ctx) }))
+  local sigma, msg, code = bs.geom.noise_sigma(sub and sub.P or P, { closed = closed(ctx) })
+  if not sigma and code == "EDEGENERATE" then
+    -- too few distinct points to estimate from (6 samples of a circle, repeats): they are
+    -- followed as exact data, and the report says so
+    warn(ctx, "too few distinct points to estimate the noise: the points are taken as exact")
+    return 0
+  end
+  return common.ok("noise estimate", sigma, msg, code)
 end
 
 function steps.weights(P, ctx)

@@ -52,8 +52,10 @@ end
 -- number + 4 (interpolation), else at their quantiles
 local function quantile_knots(u, n)
   local inner, kv = {}, { 0, 0, 0, 0 }
-  for i = 3, #u - 2 do inner[#inner + 1] = u[i] end
-  if n == #inner + 4 then
+  for i = 3, #u - 2 do -- strictly inside (0, 1) and increasing: a sample an ulp from an end
+    if u[i] > (inner[#inner] or 0) and u[i] < 1 then inner[#inner + 1] = u[i] end
+  end
+  if n >= #inner + 4 then
     for _, x in ipairs(inner) do kv[#kv + 1] = x end
     for _ = 1, 4 do kv[#kv + 1] = 1 end
     return bs.knots.new { degree = 3, values = kv }
@@ -76,8 +78,13 @@ local function free_run(P, p, o)
   local inner, ww = piece_samples(P, p, o.weights)
   local a, b = p.start, p["end"]
   if #inner == 0 then return hermite(a, b, p.t_start, p.t_end) end
+  -- repeated samples (a zero chord) would repeat a parameter, and an interpolating knot
+  -- vector would then hold a knot p + 2 times: each is kept once
   local pts, w = { a, a }, { 1, 1 }
-  for i, q in ipairs(inner) do pts[#pts + 1] = q; w[#w + 1] = ww[i] end
+  for i, q in ipairs(inner) do
+    if dist(q, pts[#pts]) > 0 and dist(q, b) > 0 then pts[#pts + 1] = q; w[#w + 1] = ww[i] end
+  end
+  if #pts == 2 then return hermite(a, b, p.t_start, p.t_end) end
   pts[#pts + 1], pts[#pts + 2] = b, b
   w[#w + 1], w[#w + 2] = 1, 1
   local u, L = chord_params(pts)
@@ -86,7 +93,7 @@ local function free_run(P, p, o)
   local base = { degree = 3, fix_ends = true, solver = "auto",
                  tangent_start = { L * p.t_start[1], L * p.t_start[2] },
                  tangent_end = { L * p.t_end[1], L * p.t_end[2] } }
-  local c = #inner
+  local c = #pts - 4
   local counts = {}
   if o.sigma <= 0 then counts = { c + 4 }
   else
