@@ -91,6 +91,18 @@ for _, c in ipairs {
   { "D, 20 exact points", dshape(20) },
   { "rounded rectangle, 64 points, noise 1e-4", rrect(8, 6.7e-3) },
   { "gear, 3000 exact points", polygon(gear, 75, 0) },
+  -- long runs: the segmentation was quadratic in a run's length (6.5 s at 64000)
+  { "square, 10^5 exact points", polygon({ { 0, 0 }, { 1, 0 }, { 1, 1 }, { 0, 1 } }, 25000, 0) },
+  { "circle, 10^5 exact points", (function()
+    local t = {}
+    for i = 1, 100000 do t[i] = { 3 * math.cos(2 * math.pi * i / 1e5), 3 * math.sin(2 * math.pi * i / 1e5) } end
+    return bs.points.new(t)
+  end)() },
+  { "circle, 9119 points out of order", (function()
+    local t = {}
+    for i = 1, 9119 do t[i] = { math.cos(i), math.sin(i) } end
+    return bs.points.new(t)
+  end)() },
 } do
   local P = c[2]
   local _, rep = auto.run(P)
