@@ -1,0 +1,42 @@
+/*
+** skin_internal.h
+** The parts of skinning shared by surface_skin.c (orientation, seams, interpolation
+** across) and surface_skin_knots.c (seam rotation, a common knot vector).
+*/
+#ifndef BSFIT_SKIN_INTERNAL_H
+#define BSFIT_SKIN_INTERNAL_H
+
+#include "internal.h"
+
+/* C0 knots closer than this (a fraction of the period [0, 1)) are one knot in the common
+** vector: a seam parameter snaps onto the nearest such knot (the seam's place is free), and
+** C0 knots (multiplicity p) of different sections within it are moved onto one value by an
+** exact reparametrisation (so the corners of a swept profile line up across the sections). */
+#define BSFIT__SKIN_MERGE 1e-3
+
+/* A seam parameter this near another knot snaps onto it (the seam moves by this fraction
+** of the period: too little to twist the surface; any more would misalign smooth ones). */
+#define BSFIT__SKIN_SNAP 1e-7
+
+/* Knots of any multiplicity closer than this are rounding apart: moved onto one value
+** (the curve moves by about this fraction of its control polygon, far below 1e-9). */
+#define BSFIT__SKIN_ROUND 1e-13
+
+/* out = c (a periodic curve on [0, 1)) started at its parameter u in [0, 1]: u is made a
+** knot, then the period's knots and distinct control points are rotated so that span j
+** (the first at u) becomes span 0. u = 1 moves period knots equal to 1 to the front. */
+bsfit_err bsfit__skin_rotate(const bsfit_curve *c, double u, bsfit_curve *out,
+                             const bsfit_allocator *a, bsfit_status *st);
+
+/* c with its seam knot whole: period knots equal to the period's end (copies of the knot
+** at 0 stored before U[p]) moved to the front, so the run at 0 starts at U[p] and every
+** value of the period appears once with its full multiplicity. In place. */
+bsfit_err bsfit__skin_seam_whole(bsfit_curve *c, const bsfit_allocator *a, bsfit_status *st);
+
+/* Elevates every section to the highest degree, merges knots closer than the tolerances
+** above, then refines each to the union of the period knots (largest multiplicity of each
+** value): one knot vector, the same curves. */
+bsfit_err bsfit__skin_compatible(bsfit_curve *w, size_t K, const bsfit_allocator *a,
+                                 bsfit_status *st);
+
+#endif
