@@ -39,4 +39,11 @@ bsfit_err bsfit__skin_seam_whole(bsfit_curve *c, const bsfit_allocator *a, bsfit
 bsfit_err bsfit__skin_compatible(bsfit_curve *w, size_t K, const bsfit_allocator *a,
                                  bsfit_status *st);
 
+/* The sections replaced by periodic cubics on one uniform knot vector of N knots, N the
+** smallest that keeps each within tol of its section (parametric distance). *count: N, or
+** 0 when no N up to 4 times the largest section's count does (the sections unchanged);
+** *dev: the largest distance (surface_skin_approx.c). */
+bsfit_err bsfit__skin_approximate(bsfit_curve *w, size_t K, double tol, size_t *count,
+                                  double *dev, const bsfit_allocator *a, bsfit_status *st);
+
 #endif

@@ -272,6 +272,20 @@ static bsfit_err interpolate_net(const bsfit_curve *w, size_t K, int q, const do
 void bsfit_skin_opts_init(bsfit_skin_opts *o) {
   o->degree_v = 0;
   o->align = 1;
+  o->tol = 0.0;
+}
+
+/* With a tolerance: the sections replaced by uniform cubics within it (the report says
+** which count, and how far). */
+static bsfit_err approximate(bsfit_curve *w, size_t K, double tol, bsfit_skin_report *rep,
+                             const bsfit_allocator *a, bsfit_status *st) {
+  size_t N;
+  double dev;
+  bsfit_err e;
+  if (!(tol > 0)) return BSFIT_OK;
+  e = bsfit__skin_approximate(w, K, tol, &N, &dev, a, st);
+  if (e == BSFIT_OK && rep != NULL) rep->count = N, rep->max_deviation = dev;
+  return e;
 }
 
 bsfit_err bsfit_surface_skin(const bsfit_curve *const *sections, size_t K,
@@ -286,8 +300,10 @@ bsfit_err bsfit_surface_skin(const bsfit_curve *const *sections, size_t K,
   int q;
   bsfit_err e;
   if (o == NULL) bsfit_skin_opts_init(&def), o = &def;
-  if (rep != NULL) rep->bad_section = (size_t)-1;
+  if (rep != NULL) rep->bad_section = (size_t)-1, rep->count = 0, rep->max_deviation = 0.0;
   if (out == NULL) return bsfit__fail(st, BSFIT_EINVAL, "no output surface");
+  if (!(o->tol >= 0 && o->tol < HUGE_VAL))
+    return bsfit__fail(st, BSFIT_EINVAL, "tolerance %g: must be 0 (exact) or positive", o->tol);
   if ((e = check_sections(sections, K, o->degree_v, rep, st)) != BSFIT_OK) return e;
   q = o->degree_v > 0 ? o->degree_v : (K - 1 < 3 ? (int)K - 1 : 3);
   bytes = bsfit__mulsize(K, sizeof *w + sizeof *sh + sizeof *v);
@@ -298,6 +314,7 @@ bsfit_err bsfit_surface_skin(const bsfit_curve *const *sections, size_t K,
   for (k = 0; k < K; k++) bsfit_curve_init(&w[k]);
   for (k = 0, e = BSFIT_OK; k < K && e == BSFIT_OK; k++)
     e = orient_section(sections[k], k, o->align, w, sh, rep, a, st);
+  if (e == BSFIT_OK) e = approximate(w, K, o->tol, rep, a, st);
   if (e == BSFIT_OK) e = bsfit__skin_compatible(w, K, a, st);
   if (e == BSFIT_OK) e = check_compatible(w, K, st);
   if (e == BSFIT_OK) e = v_params(w, K, v, rep, st);

@@ -135,7 +135,7 @@ static void test_interpolates_sections(void **state) {
     const bsfit_curve *ptr[KMAX];
     double v[KMAX], shifts[KMAX], size, ua, ub, va, vb;
     int rev[KMAX];
-    bsfit_skin_report rep = {v, rev, shifts, 0};
+    bsfit_skin_report rep = {v, rev, shifts, 0, 0, 0};
     bsfit_skin_opts o;
     bsfit_surface S;
     bsfit_status st;
@@ -182,7 +182,7 @@ static void test_ruled(void **state) {
     const bsfit_curve *ptr[2] = {&C[0], &C[1]};
     double v[2], sh[2], size;
     int rev[2];
-    bsfit_skin_report rep = {v, rev, sh, 0};
+    bsfit_skin_report rep = {v, rev, sh, 0, 0, 0};
     bsfit_surface S;
     random_section(&r, 0.0, &C[0]);
     random_section(&r, rng_range(&r, 1, 10), &C[1]);
@@ -301,7 +301,7 @@ static double skin_vase(const vase *s, size_t K, const double *theta, const int 
   bsfit_curve C[KMAX];
   const bsfit_curve *ptr[KMAX];
   double v[KMAX], err;
-  bsfit_skin_report rep = {v, rep_rev, shifts, 0};
+  bsfit_skin_report rep = {v, rep_rev, shifts, 0, 0, 0};
   bsfit_skin_opts o;
   bsfit_surface S;
   size_t k;
@@ -384,6 +384,75 @@ static void test_twisted_inputs(void **state) {
 /* }==================================================================== */
 
 /* {====================================================================
+** Within a tolerance: light uniform cubics
+** ===================================================================== */
+
+/* max over 1000 u of |S(u, v) - C(t(u))|, t from the report's shift and direction */
+static double section_error_dense(const bsfit_surface *S, const bsfit_curve *C, double v,
+                                  double shift, int reversed) {
+  double a, b, worst = 0;
+  int i;
+  bsfit_curve_domain(C, &a, &b);
+  for (i = 0; i < 1000; i++) {
+    double u = (i + 0.37) / 1000.0, x[3], y[3];
+    double t = reversed ? shift - (b - a) * u : shift + (b - a) * u;
+    assert_int_equal(bsfit_surface_eval(S, u, v, x, NULL), BSFIT_OK);
+    assert_int_equal(bsfit_curve_eval(C, t, y, NULL), BSFIT_OK);
+    worst = fmax(worst, dist3(x, y));
+  }
+  return worst;
+}
+
+/* Random stacks skinned with tol: when a count is reported, the surface has count + 3
+** uniform columns and every section is within tol of it (1000 points each, against the
+** section at the report's parameter); with a tol no cubic count reaches, the exact surface. */
+static void test_tolerance(void **state) {
+  test_rng r = {0x70170170ULL};
+  int seed, light = 0;
+  (void)state;
+  for (seed = 0; seed < 40; seed++) {
+    size_t K = 2 + (size_t)(rng_uniform(&r) * 7), k, i;
+    bsfit_curve C[KMAX];
+    const bsfit_curve *ptr[KMAX];
+    double v[KMAX], shifts[KMAX], worst = 0;
+    int rev[KMAX];
+    bsfit_skin_report rep = {v, rev, shifts, 0, 0, 0};
+    bsfit_skin_opts o;
+    bsfit_surface S;
+    bsfit_status st;
+    for (k = 0; k < K; k++) {
+      random_section(&r, 2.0 * (double)k, &C[k]);
+      ptr[k] = &C[k];
+    }
+    bsfit_skin_opts_init(&o);
+    o.tol = seed % 10 == 9 ? 1e-13 : pow(10.0, -3.0 * rng_uniform(&r)) * 0.3;
+    bsfit_surface_init(&S);
+    assert_int_equal(bsfit_surface_skin(ptr, K, &o, &S, &rep, NULL, &st), BSFIT_OK);
+    for (k = 0; k < K; k++)
+      worst = fmax(worst, section_error_dense(&S, &C[k], v[k], shifts[k], rev[k]));
+    if (rep.count > 0) {
+      light++;
+      assert_int_equal(S.nu, rep.count + 3);
+      for (i = 0; i <= rep.count; i++)
+        assert_true(fabs(S.knots_u[3 + i] - (double)i / (double)rep.count) < 1e-15);
+      assert_true(rep.max_deviation <= o.tol);
+      if (worst > o.tol) fail_msg("seed %d: %.3g from a section, tol %.3g", seed, worst, o.tol);
+    } else {
+      assert_true(rep.max_deviation == 0);
+      assert_true(worst <= 1e-12 * net_size(&S));
+    }
+    bsfit_surface_free(&S);
+    for (k = 0; k < K; k++) bsfit_curve_free(&C[k]);
+  }
+  print_message("tolerance: %d of 40 stacks light\n", light);
+  /* random sections of degree 1 and 2 have corners that uniform cubics round off beyond
+  ** tol up to the count cap: those stacks take the exact branch */
+  assert_true(light >= 5);
+}
+
+/* }==================================================================== */
+
+/* {====================================================================
 ** Errors, memory, interruption
 ** ===================================================================== */
 
@@ -392,7 +461,7 @@ static void test_errors(void **state) {
   bsfit_curve C[3], open, flat, rat;
   const bsfit_curve *ptr[3];
   double pts[4 * 3] = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0}, w[4] = {1, 2, 1, 2};
-  bsfit_skin_report rep = {NULL, NULL, NULL, 0};
+  bsfit_skin_report rep = {NULL, NULL, NULL, 0, 0, 0};
   bsfit_skin_opts o;
   bsfit_surface S;
   bsfit_status st;
@@ -410,6 +479,12 @@ static void test_errors(void **state) {
   assert_int_equal(bsfit_surface_skin(ptr, 3, &o, &S, NULL, NULL, &st), BSFIT_EDEGREE);
   o.degree_v = 4;
   assert_int_equal(bsfit_surface_skin(ptr, 3, &o, &S, NULL, NULL, &st), BSFIT_EDEGREE);
+  o.degree_v = 0;
+  o.tol = -1;
+  assert_int_equal(bsfit_surface_skin(ptr, 3, &o, &S, NULL, NULL, &st), BSFIT_EINVAL);
+  o.tol = NAN;
+  assert_int_equal(bsfit_surface_skin(ptr, 3, &o, &S, NULL, NULL, &st), BSFIT_EINVAL);
+  o.tol = 0;
   /* an open section, a 2D one, a rational one: each named */
   bsfit_curve_init(&open);
   assert_int_equal(bsfit_curve_new(&open, 2, 3, 4, NULL, pts, NULL, 0, NULL, NULL), BSFIT_OK);
@@ -493,6 +568,7 @@ int main(void) {
     cmocka_unit_test(test_periodic_u_json),
     cmocka_unit_test(test_surface_of_revolution),
     cmocka_unit_test(test_twisted_inputs),
+    cmocka_unit_test(test_tolerance),
     cmocka_unit_test(test_errors),
     cmocka_unit_test(test_enomem_and_interrupt),
   };

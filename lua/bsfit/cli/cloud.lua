@@ -27,6 +27,9 @@ usage: bsfit cloud IN.(ply|stl|obj|xyz|csv) -o OUTDIR [options]
   --samples K      curve samples written to <name>.csv (default 1000)
   --format LIST    any of json,svg,csv,iges for each loop (default json,svg,csv)
   -j N             process N slices at a time (default 1)
+  --skin-tol T     the surface within T of each section, through light uniform cubics
+                   (default auto: a mesh's tessellation error, a cloud's noise);
+                   0: through the sections exactly
   --no-surface     do not skin the sections into a surface (by default, when every
                    slice gives one closed loop: surface.json, surface.iges, surface.obj)
   -q               no summary line
@@ -99,6 +102,9 @@ local flags = {
   ["--samples"] = function(o, v) o.samples = count(v, "--samples") end,
   ["--format"] = function(o, v) o.formats = formats(v) end,
   ["-j"] = function(o, v) o.jobs = count(v, "-j") end,
+  ["--skin-tol"] = function(o, v)
+    o.skin_tol = v == "auto" and "auto" or (tonumber(v) == 0 and 0 or number(v, "--skin-tol", 0))
+  end,
 }
 
 -- The options and the input file; raises with a usage message.

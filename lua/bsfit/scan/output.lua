@@ -14,6 +14,16 @@ local M = {}
 M.columns = { "slice", "position", "loop", "loops", "closed", "points_in", "cell", "points_reduced",
               "control_points", "rms", "max", "status", "message", "name" }
 
+-- What the skinned surface is: its control net, the tolerance it was built to and how far
+-- from the sections it is (0: through them exactly); nil without a surface.
+function M.surface_info(result)
+  local S, rep = result.surface, result.skin
+  if not S then return nil end
+  local nu, nv = S:count()
+  return { control_points_u = nu, control_points_v = nv, tol = rep.tol or 0,
+           exact = not rep.count or rep.count == 0, max_deviation = rep.max_deviation or 0 }
+end
+
 local function summary(dir, result, ctx)
   report.must_write(dir .. "/summary.csv", report.csv(M.columns, result.rows))
   local clean = {}
@@ -25,7 +35,7 @@ local function summary(dir, result, ctx)
   report.must_write(dir .. "/summary.json", report.json {
     input = result.input, kind = result.scan and result.scan.kind, strategy = ctx.strategy,
     degree = ctx.degree, sections = clean, surface = result.surface ~= nil,
-    surface_message = result.surface_message } .. "\n")
+    surface_message = result.surface_message, surface_info = M.surface_info(result) } .. "\n")
   local timing = {}
   for i, t in ipairs(result.timing) do
     timing[i] = { slice = t.slice, ms = ("%.3f"):format(t.ms) }

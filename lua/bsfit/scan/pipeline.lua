@@ -30,7 +30,7 @@ M.settings = {
   format = "auto", axis = "z", slices = false, spacing = false, at = false, thickness = false,
   tol = false, cell = false, target = false, order_method = "auto", strategy = "auto",
   degree = 3, count = false, samples = 1000, formats = false, outdir = false, jobs = 1,
-  surface = true,
+  surface = true, skin_tol = "auto",
 }
 
 local clock = (bs.parallel and bs.parallel.clock) or os.clock
