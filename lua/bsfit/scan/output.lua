@@ -4,10 +4,12 @@
 -- there, so the other files do not depend on -j), sections.iges (every fitted loop as
 -- a 3D entity 126, in slice order) and sections.svg (the loops in their planes, one
 -- colour per slice), and when the sections make one surface, surface.json, surface.iges
--- (entity 128) and surface.obj (a closed triangle mesh). Every file is written atomically.
+-- (entity 128), surface.obj (a closed triangle mesh) and surface.svg (a wireframe preview
+-- with the sections). Every file is written atomically.
 
 local bs = require "bsfit"
 local report = require "bsfit.report"
+local plot_num = require("bsfit.plot").num
 
 local M = {}
 
@@ -74,6 +76,22 @@ local function picture(result, samples)
   return table.concat(out, "\n")
 end
 
+-- The surface's preview (bsfit.svg_surface): its wireframe with the fitted sections on it,
+-- seen obliquely about the slicing axis.
+function M.surface_picture(result)
+  local S, info = result.surface, M.surface_info(result)
+  local sl = result.curves[1] and result.curves[1].slice
+  return require("bsfit.svg_surface").picture {
+    surface = S, sections = result.skin.sections, report = result.skin,
+    up = sl and sl.normal or { 0, 0, 1 },
+    title = ("surface: %d x %d control points, %d sections"):format(info.control_points_u,
+      info.control_points_v, #result.skin.v_params),
+    subtitle = info.exact and "through the sections exactly"
+      or ("within %s of the sections (skin tolerance %s)"):format(plot_num(info.max_deviation),
+                                                               plot_num(info.tol)),
+  }
+end
+
 function M.write(result, ctx)
   local dir = ctx.outdir
   if not dir then return end
@@ -83,11 +101,12 @@ function M.write(result, ctx)
     if not ok then error("cannot write " .. dir .. "/sections.iges: " .. tostring(err), 0) end
     report.must_write(dir .. "/sections.svg", picture(result, 200))
   end
-  if result.surface then -- the skinned surface: JSON, IGES 128, a triangle mesh
+  if result.surface then -- the skinned surface: JSON, IGES 128, a triangle mesh, a preview
     for _, ext in ipairs { "json", "iges", "obj" } do
       local ok, err = result.surface:write(dir .. "/surface." .. ext)
       if not ok then error("cannot write " .. dir .. "/surface." .. ext .. ": " .. tostring(err), 0) end
     end
+    report.must_write(dir .. "/surface.svg", M.surface_picture(result))
   end
 end
 

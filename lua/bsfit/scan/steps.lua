@@ -191,7 +191,7 @@ function M.skin(result, ctx)
     result.surface_message = "skinning failed: " .. tostring(ok and rep or S):gsub("^.-%((.*)%)$", "%1")
     return
   end
-  rep.tol = tol
+  rep.tol, rep.sections = tol, sections
   result.surface, result.skin = S, rep
 end
 
