@@ -7,8 +7,8 @@
 ** however many knots the sections had (sections of exact mesh loops carry a C0 knot at
 ** every mesh edge: hundreds each, and their union thousands).
 ** The distance checked is parametric, |C_k(t) - A_k(t)|, which bounds the distance between
-** the curves from above: at the fit's samples (8 per span of the widest fit tried and 4
-** per span of the section, so no span of either goes unseen) and at 32 points per span of
+** the curves from above: at the fit's samples (8 per span of the fit and 4 per span of the
+** section, so no span of either goes unseen) and at 32 points per span of
 ** the fit and 16 per span of the section.
 */
 #include "skin_internal.h"
@@ -41,7 +41,6 @@ static size_t sample_params(const bsfit_curve *c, size_t M, double *u) {
 typedef struct approx {
   bsfit_fitter *f;
   double *u, *pts, *knots;
-  size_t M, cap;
 } approx;
 
 /* The largest |c(t) - f(t)| at 32 points in each span of f and 16 in each span of c: the
@@ -71,7 +70,7 @@ static bsfit_err fit_one(approx *ap, const bsfit_curve *c, size_t N, bsfit_curve
                          double *dev, bsfit_status *st) {
   bsfit_fit_opts o;
   bsfit_fit_report r;
-  size_t i, m = sample_params(c, ap->M, ap->u);
+  size_t i, m = sample_params(c, 8 * N, ap->u);
   bsfit_err e;
   for (i = 0; i <= N; i++) ap->knots[i] = (double)i / (double)N;
   bsfit_fit_opts_init(&o);
@@ -152,8 +151,7 @@ bsfit_err bsfit__skin_approximate(bsfit_curve *w, size_t K, double tol, size_t *
   }
   hi = 4 * Nmax > lo ? 4 * Nmax : lo; /* beyond that the exact union is the lighter one */
   memset(&ap, 0, sizeof ap);
-  ap.M = 8 * hi;
-  cap = ap.M + 4 * Nmax;
+  cap = 8 * hi + 4 * Nmax;
   ap.u = bsfit__alloc(a, cap * 4 * sizeof(double) + (hi + 1) * sizeof(double));
   if (ap.u == NULL) return bsfit__fail(st, BSFIT_ENOMEM, "out of memory for %zu samples", cap);
   ap.pts = ap.u + cap;

@@ -10,6 +10,7 @@
 
 local bs = require "bsfit"
 local auto = require "bsfit.strategy.auto"
+local steps = require "bsfit.scan.steps"
 
 local M = {}
 
@@ -148,14 +149,9 @@ M.family_names = { "prism", "rounded_box", "letter", "ellipse" }
 -- Stacks
 -- =======================================================================
 
+-- scan_synth's generator, with uniform numbers in a range and integers in [a, b]
 function M.rng(seed)
-  local s = seed % 2147483647
-  if s <= 0 then s = s + 2147483646 end
-  local r = {}
-  function r.uniform()
-    s = (s * 48271) % 2147483647
-    return s / 2147483647
-  end
+  local r = require("scan_synth").rng(seed)
   function r.range(a, b) return a + (b - a) * r.uniform() end
   function r.int(a, b) return math.min(b, a + math.floor((b - a + 1) * r.uniform())) end
   return r
@@ -169,21 +165,10 @@ local function section(prof, m, start, reverse, z, angle, scale)
   end
   local C, rep = auto.run(bs.points.new(P), { closed = true })
   assert(C and rep.closed, "auto gave no closed curve")
-  local ctrl, p, n = C:control_points(), C:degree(), C:distinct()
-  local ca, sa, P3 = math.cos(angle), math.sin(angle), {}
-  for i = 1, n do
-    local x, y = ctrl:get(i)
-    P3[i] = { scale * (ca * x - sa * y), scale * (sa * x + ca * y), z }
-  end
-  local U, per = C:knots():values(), {}
-  for i = 1, n + 1 do per[i] = U[p + i] end
-  local w
-  if C:is_rational() then
-    local all = C:weights():totable()
-    w = {}
-    for i = 1, n do w[i] = all[i] end
-  end
-  local C3 = bs.curve.new { degree = p, knots = per, control_points = P3, weights = w, periodic = true }
+  -- the scan pipeline's map to 3D, with the plane's axes turned and scaled
+  local ca, sa = math.cos(angle), math.sin(angle)
+  local C3 = steps.to3d(C, { origin = { 0, 0, z }, u = { scale * ca, scale * sa, 0 },
+                             v = { -scale * sa, scale * ca, 0 } })
   if C3:is_rational() then C3 = assert(bs.filter.reduce(C3, { degree = 3, tol = 1e-5 })) end
   return C3
 end
