@@ -328,23 +328,19 @@ bsfit_err bsfit_surface_to_iges(const bsfit_surface *s, char **out, size_t *len,
 /* }==================================================================== */
 
 bsfit_err bsfit_curve_write_iges(const bsfit_curve *c, const char *path, bsfit_status *st) {
-  bsfit__buf b;
+  char *text = NULL;
+  size_t len = 0;
   bsfit_err e;
   if (path == NULL) return bsfit__fail(st, BSFIT_EINVAL, "no file name to write to");
-  bsfit__buf_init(&b, NULL);
-  e = curve_iges(c, path, &b.data, &b.len, NULL, st);
-  if (e != BSFIT_OK) return e;
-  b.cap = b.len + 1;
-  return bsfit__buf_write(&b, path, st);
+  e = curve_iges(c, path, &text, &len, NULL, st);
+  return bsfit__exchange_write(e, text, len, path, st);
 }
 
 bsfit_err bsfit_surface_write_iges(const bsfit_surface *s, const char *path, bsfit_status *st) {
-  bsfit__buf b;
+  char *text = NULL;
+  size_t len = 0;
   bsfit_err e;
   if (path == NULL) return bsfit__fail(st, BSFIT_EINVAL, "no file name to write to");
-  bsfit__buf_init(&b, NULL);
-  e = surface_iges(s, path, &b.data, &b.len, NULL, st);
-  if (e != BSFIT_OK) return e;
-  b.cap = b.len + 1;
-  return bsfit__buf_write(&b, path, st);
+  e = surface_iges(s, path, &text, &len, NULL, st);
+  return bsfit__exchange_write(e, text, len, path, st);
 }
