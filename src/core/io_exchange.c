@@ -1,9 +1,16 @@
 /*
 ** io_exchange.c
 ** What the CAD exchange writers share (io_step.c, io_iges.c, io_iges_set.c, io_dxf.c): the
-** check of a curve a format can hold, and writing the text a writer made to its file.
+** check of a curve a format can hold, the file's time stamp, and writing the text a writer
+** made to its file.
 */
+#define _POSIX_C_SOURCE 200809L /* gmtime_r */
+
 #include "io_internal.h"
+
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
 
 bsfit_err bsfit__exchange_check_curve(const bsfit_curve *c, size_t k, const char *format,
                                       const char *kind, bsfit_status *st) {
@@ -26,4 +33,18 @@ bsfit_err bsfit__exchange_write(bsfit_err made, char *text, size_t len, const ch
   e = bsfit__write_atomic(path, text != NULL ? text : "", len, 1, st);
   bsfit__free(NULL, text, len + 1);
   return e;
+}
+
+void bsfit__exchange_time(const char *fmt, char *out, size_t size, const char *fallback) {
+  const char *epoch = getenv("SOURCE_DATE_EPOCH");
+  time_t now = time(NULL);
+  struct tm tmv;
+  if (epoch != NULL && *epoch >= '0' && *epoch <= '9') {
+    char *end;
+    unsigned long long v = strtoull(epoch, &end, 10);
+    if (*end == '\0' && v <= 253402300799ULL) now = (time_t)v; /* up to 9999-12-31 */
+  }
+  if (now == (time_t)-1 || gmtime_r(&now, &tmv) == NULL ||
+      strftime(out, size, fmt, &tmv) != strlen(fallback))
+    strcpy(out, fallback);
 }

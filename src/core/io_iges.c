@@ -12,7 +12,6 @@
 #include <stdio.h>
 #include <string.h>
 #include <stdlib.h>
-#include <time.h>
 
 /* {====================================================================
 ** Records
@@ -106,17 +105,7 @@ static size_t start_section(bsfit__buf *b, const char *what) {
 /* The file's date: SOURCE_DATE_EPOCH when set to a plain decimal count of seconds (the
 ** reproducible-builds convention: the same curve then gives the same bytes), else now. */
 static void iges_date(char out[16]) {
-  const char *epoch = getenv("SOURCE_DATE_EPOCH");
-  time_t now = time(NULL);
-  struct tm tmv;
-  if (epoch != NULL && *epoch >= '0' && *epoch <= '9') {
-    char *end;
-    unsigned long long v = strtoull(epoch, &end, 10);
-    if (*end == '\0' && v <= 253402300799ULL) now = (time_t)v; /* up to 9999-12-31 */
-  }
-  if (now == (time_t)-1 || gmtime_r(&now, &tmv) == NULL ||
-      strftime(out, 16, "%Y%m%d.%H%M%S", &tmv) != 15)
-    strcpy(out, "19700101.000000");
+  bsfit__exchange_time("%Y%m%d.%H%M%S", out, 16, "19700101.000000");
 }
 
 /* The 25 parameters of the Global section (IGES 5.3, 2.2.4.3); units millimetres. */

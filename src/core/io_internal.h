@@ -43,6 +43,11 @@ bsfit_err bsfit__exchange_check_curve(const bsfit_curve *c, size_t k, const char
                                       const char *kind, bsfit_status *st);
 bsfit_err bsfit__exchange_write(bsfit_err made, char *text, size_t len, const char *path,
                                 bsfit_status *st);
+/* The file's time stamp, UTC, by strftime's fmt into out (size bytes): SOURCE_DATE_EPOCH
+** when set to a plain decimal count of seconds (the reproducible-builds convention: the same
+** geometry then gives the same bytes), else now; fallback (a time of that format) when the
+** time cannot be had or formatted. */
+void bsfit__exchange_time(const char *fmt, char *out, size_t size, const char *fallback);
 
 /* Writes a finished buffer atomically and frees it (whatever the outcome). */
 bsfit_err bsfit__buf_write(bsfit__buf *b, const char *path, bsfit_status *st);

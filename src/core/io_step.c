@@ -15,7 +15,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 /* {====================================================================
 ** Tokens and entities
@@ -132,17 +131,7 @@ static void put_reals(bsfit__buf *b, const double *x, size_t n, size_t stride) {
 /* The time of writing as ISO 8601, or SOURCE_DATE_EPOCH (seconds since 1970, UTC)
 ** when set to a plain decimal number: the same geometry then gives the same bytes. */
 static void step_time(char out[32]) {
-  const char *epoch = getenv("SOURCE_DATE_EPOCH");
-  time_t now = time(NULL);
-  struct tm tmv;
-  if (epoch != NULL && *epoch >= '0' && *epoch <= '9') {
-    char *end;
-    unsigned long long v = strtoull(epoch, &end, 10);
-    if (*end == '\0' && v <= 253402300799ULL) now = (time_t)v; /* up to 9999-12-31 */
-  }
-  if (now == (time_t)-1 || gmtime_r(&now, &tmv) == NULL ||
-      strftime(out, 32, "%Y-%m-%dT%H:%M:%S", &tmv) == 0)
-    strcpy(out, "1970-01-01T00:00:00");
+  bsfit__exchange_time("%Y-%m-%dT%H:%M:%S", out, 32, "1970-01-01T00:00:00");
 }
 
 /* Part 21 strings: a quote is doubled; bytes outside printable ASCII become '_'. */
