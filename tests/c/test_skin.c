@@ -531,31 +531,39 @@ static void test_enomem_and_interrupt(void **state) {
   volatile int stop = 1;
   long n;
   size_t k;
+  int pass;
+  bsfit_skin_opts o;
+  bsfit_skin_report rep = {NULL, NULL, NULL, 0, 0, 0};
   (void)state;
   for (k = 0; k < 4; k++) {
     random_section(&r, (double)k, &C[k]);
     ptr[k] = &C[k];
   }
-  for (n = 1;; n++) {
-    bsfit_err e;
-    memset(&cnt, 0, sizeof cnt);
-    cnt.fail_at = n;
-    a.fn = counting_alloc;
-    a.ud = &cnt;
-    a.interrupt = NULL;
+  bsfit_skin_opts_init(&o);
+  for (pass = 0; pass < 2; pass++) { /* exact, then within a tolerance (the cubics' search) */
+    o.tol = pass ? 0.5 : 0.0;
+    for (n = 1;; n++) {
+      bsfit_err e;
+      memset(&cnt, 0, sizeof cnt);
+      cnt.fail_at = n;
+      a.fn = counting_alloc;
+      a.ud = &cnt;
+      a.interrupt = NULL;
+      bsfit_surface_init(&S);
+      e = bsfit_surface_skin(ptr, 4, &o, &S, &rep, &a, &st);
+      bsfit_surface_free(&S);
+      assert_int_equal(cnt.live, 0);
+      if (e == BSFIT_OK) break;
+      assert_int_equal(e, BSFIT_ENOMEM);
+    }
+    assert_true(n > 10);
+    assert_true(pass == 0 || rep.count > 0); /* the search did run */
+    a.fn = NULL;
+    a.interrupt = &stop;
     bsfit_surface_init(&S);
-    e = bsfit_surface_skin(ptr, 4, NULL, &S, NULL, &a, &st);
-    bsfit_surface_free(&S);
-    assert_int_equal(cnt.live, 0);
-    if (e == BSFIT_OK) break;
-    assert_int_equal(e, BSFIT_ENOMEM);
+    assert_int_equal(bsfit_surface_skin(ptr, 4, &o, &S, NULL, &a, &st), BSFIT_EINTR);
+    assert_null(S.ctrl);
   }
-  assert_true(n > 10);
-  a.fn = NULL;
-  a.interrupt = &stop;
-  bsfit_surface_init(&S);
-  assert_int_equal(bsfit_surface_skin(ptr, 4, NULL, &S, NULL, &a, &st), BSFIT_EINTR);
-  assert_null(S.ctrl);
   for (k = 0; k < 4; k++) bsfit_curve_free(&C[k]);
 }
 
