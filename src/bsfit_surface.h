@@ -145,9 +145,8 @@ typedef struct bsfit_skin_report {
   int *reversed;      /**< 1 when section k was reversed to wind like the previous one */
   double *shifts;     /**< the parameter of section k (in its own domain) at the seam u = 0 */
   size_t bad_section; /**< set by the call: the section an error is about, or (size_t)-1 */
-  size_t count;       /**< set by the call with tol: the uniform cubics' count N (0: no N up
-                           to 4 times the largest section's count was within tol, so the
-                           surface passes through the sections exactly) */
+  size_t count;       /**< set by the call with tol: the cubics' control points N (0: none
+                           within tol, so the surface passes through the sections exactly) */
   double max_deviation; /**< set by the call with tol: the largest distance from a section
                              to its cubic (parametric, so an upper bound); 0 without */
 } bsfit_skin_report;
@@ -167,9 +166,10 @@ BSFIT_API void bsfit_skin_opts_init(bsfit_skin_opts *o);
 ** The surface has as many u control points as the union of the sections' knots: sections
 ** fitted with the same knots give N + p, independently fitted ones up to the sum of theirs.
 ** With o->tol > 0 the aligned sections are first replaced by least-squares periodic cubics
-** on one uniform knot vector, with the smallest count keeping each within tol (N + 3
-** columns; rep->count, rep->max_deviation), unless no count up to 4 times the largest
-** section's does (then rep->count = 0 and the surface is the exact one).
+** on one knot vector (uniform, plus C0 knots at the corners at least half the sections
+** share), with the smallest count keeping each within tol (N + 3 columns; rep->count,
+** rep->max_deviation), unless no count up to 4 times the largest section's does (then
+** rep->count = 0 and the surface is the exact one).
 ** @param[in]  sections  K valid, periodic, polynomial, 3D curves (any degrees >= 1).
 ** @param[in]  o         options, or NULL for the defaults.
 ** @param[out] out       the surface (freed first; arrays allocated with a). Empty on error.

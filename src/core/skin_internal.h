@@ -39,10 +39,26 @@ bsfit_err bsfit__skin_seam_whole(bsfit_curve *c, const bsfit_allocator *a, bsfit
 bsfit_err bsfit__skin_compatible(bsfit_curve *w, size_t K, const bsfit_allocator *a,
                                  bsfit_status *st);
 
-/* The sections replaced by periodic cubics on one uniform knot vector of N knots, N the
-** smallest that keeps each within tol of its section (parametric distance). *count: N, or
-** 0 when no N up to 4 times the largest section's count does (the sections unchanged);
-** *dev: the largest distance (surface_skin_approx.c). */
+/* C0 knots (multiplicity p) of different sections within tol (BSFIT__SKIN_MERGE for the
+** exact surface) moved onto one value (an exact, piecewise-affine reparametrisation;
+** surface_skin_knots.c). */
+bsfit_err bsfit__skin_merge_corners(bsfit_curve *w, size_t K, double tol,
+                                    const bsfit_allocator *a, bsfit_status *st);
+
+/* Corners merged before the sections are replaced by cubics within a tolerance: the cubics
+** are new curves anyway, so corresponding corners fitted at parameters 2% of the period
+** apart (sections of a noisy cloud) are lined up too. */
+#define BSFIT__SKIN_MERGE_APPROX 2e-2
+
+/* The C0 knot values that at least half of the K sections have, sorted, into out (room for
+** all the sections' knots); returns their count. */
+size_t bsfit__skin_shared_corners(const bsfit_curve *w, size_t K, double *out);
+
+/* The sections replaced by periodic cubics on one knot vector (N uniform spans, and the
+** corners most sections share), N the smallest that keeps each within tol of its section
+** (parametric distance). *count: the cubics' control points, or 0 when no N up to 4 times
+** the largest section's count does (the sections unchanged); *dev: the largest distance
+** (surface_skin_approx.c). */
 bsfit_err bsfit__skin_approximate(bsfit_curve *w, size_t K, double tol, size_t *count,
                                   double *dev, const bsfit_allocator *a, bsfit_status *st);
 

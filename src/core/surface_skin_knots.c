@@ -133,8 +133,9 @@ static int cmp_corner(const void *x, const void *y) {
   return cmp_double(&((const corner *)x)->x, &((const corner *)y)->x);
 }
 
-/* The C0 knots of c (section k), in order, into out (when not NULL); returns their count. */
-static size_t corners_of(const bsfit_curve *c, size_t k, corner *out) {
+/* The C0 knots of c (section k), in order, into out (when not NULL); returns their count.
+** Corners within tol of the period's end are anchored. */
+static size_t corners_of(const bsfit_curve *c, size_t k, double tol, corner *out) {
   size_t i = 0, n = 0;
   int m, p = c->degree, seam = 0;
   for (; (m = next_run(c, &i)) > 0; i += (size_t)m) {
@@ -143,7 +144,7 @@ static size_t corners_of(const bsfit_curve *c, size_t k, corner *out) {
     if (x == 0.0) seam = 1;
     if (out != NULL) {
       out[n].x = x;
-      out[n].anchored = x == 0.0 || x > 1.0 - BSFIT__SKIN_MERGE;
+      out[n].anchored = x == 0.0 || x > 1.0 - tol;
       out[n].section = k;
     }
     n++;
@@ -153,13 +154,13 @@ static size_t corners_of(const bsfit_curve *c, size_t k, corner *out) {
 }
 
 /* rep[i]: where sorted corner c[i] goes: the first anchored value of its cluster, else the
-** cluster's first. A cluster holds values within BSFIT__SKIN_MERGE of its first and at most
-** one corner of each section (last[k]: the last cluster section k was seen in). */
-static void cluster_corners(const corner *c, size_t n, double *rep, size_t *last) {
+** cluster's first. A cluster holds values within tol of its first and at most one corner of
+** each section (last[k]: the last cluster section k was seen in). */
+static void cluster_corners(const corner *c, size_t n, double tol, double *rep, size_t *last) {
   size_t i, j, k, id = 0;
   for (i = 0; i < n; i = j, id++) {
     double r = c[i].x;
-    for (j = i; j < n && c[j].x - c[i].x <= BSFIT__SKIN_MERGE && last[c[j].section] != id; j++)
+    for (j = i; j < n && c[j].x - c[i].x <= tol && last[c[j].section] != id; j++)
       last[c[j].section] = id;
     for (k = i; k < j; k++)
       if (c[k].anchored) {
@@ -190,9 +191,9 @@ static void map_pieces(const bsfit_curve *c, const double *X, const double *R, s
 ** all the sections, rep their values). A map that would collapse a piece leaves c alone.
 ** X, R, t: scratch of N + 2 values; own: of N + 1 corners. */
 static bsfit_err remap_section(bsfit_curve *c, const double *xs, const double *rep, size_t n,
-                               corner *own, double *X, double *R, double *t,
+                               double tol, corner *own, double *X, double *R, double *t,
                                const bsfit_allocator *a, bsfit_status *st) {
-  size_t m = corners_of(c, 0, own), j;
+  size_t m = corners_of(c, 0, tol, own), j;
   int moved = 0;
   for (j = 0; j < m; j++) {
     X[j] = own[j].x;
@@ -207,15 +208,15 @@ static bsfit_err remap_section(bsfit_curve *c, const double *xs, const double *r
   return set_knots(c, t, a, st);
 }
 
-static bsfit_err merge_corners(bsfit_curve *w, size_t K, const bsfit_allocator *a,
-                               bsfit_status *st) {
+bsfit_err bsfit__skin_merge_corners(bsfit_curve *w, size_t K, double tol,
+                                    const bsfit_allocator *a, bsfit_status *st) {
   size_t k, n = 0, Nmax = 0, bytes;
   corner *c, *own;
   double *xs, *rep, *X;
   size_t *last;
   bsfit_err e = BSFIT_OK;
   for (k = 0; k < K; k++) {
-    n += corners_of(&w[k], k, NULL);
+    n += corners_of(&w[k], k, tol, NULL);
     if (w[k].n > Nmax) Nmax = w[k].n;
   }
   if (n < 2) return BSFIT_OK;
@@ -228,14 +229,28 @@ static bsfit_err merge_corners(bsfit_curve *w, size_t K, const bsfit_allocator *
   own = (corner *)(rep + n);
   X = (double *)(own + Nmax + 2);
   last = (size_t *)(X + 3 * (Nmax + 2));
-  for (k = 0, n = 0; k < K; k++) n += corners_of(&w[k], k, c + n), last[k] = (size_t)-1;
+  for (k = 0, n = 0; k < K; k++) n += corners_of(&w[k], k, tol, c + n), last[k] = (size_t)-1;
   qsort(c, n, sizeof *c, cmp_corner);
   for (k = 0; k < n; k++) xs[k] = c[k].x;
-  cluster_corners(c, n, rep, last);
+  cluster_corners(c, n, tol, rep, last);
   for (k = 0; k < K && e == BSFIT_OK; k++)
-    e = remap_section(&w[k], xs, rep, n, own, X, X + Nmax + 2, X + 2 * (Nmax + 2), a, st);
+    e = remap_section(&w[k], xs, rep, n, tol, own, X, X + Nmax + 2, X + 2 * (Nmax + 2), a, st);
   bsfit__free(a, c, bytes);
   return e;
+}
+
+size_t bsfit__skin_shared_corners(const bsfit_curve *w, size_t K, double *out) {
+  size_t k, i = 0, n = 0, kept = 0;
+  int m;
+  for (k = 0; k < K; k++) /* each section's corners once: the values, in out */
+    for (i = 0; (m = next_run(&w[k], &i)) > 0; i += (size_t)m)
+      if (m >= w[k].degree) out[n++] = w[k].knots[(size_t)w[k].degree + i];
+  qsort(out, n, sizeof(double), cmp_double);
+  for (i = 0; i < n; i = k) {
+    for (k = i; k < n && out[k] == out[i]; k++) continue;
+    if (2 * (k - i) >= K) out[kept++] = out[i];
+  }
+  return kept;
 }
 
 /* }==================================================================== */
@@ -331,7 +346,7 @@ bsfit_err bsfit__skin_compatible(bsfit_curve *w, size_t K, const bsfit_allocator
       e = bsfit_curve_elevate(&w[k], p - w[k].degree, &w[k], st);
       if (e == BSFIT_OK) e = bsfit__skin_seam_whole(&w[k], a, st);
     }
-  if (e == BSFIT_OK) e = merge_corners(w, K, a, st);
+  if (e == BSFIT_OK) e = bsfit__skin_merge_corners(w, K, BSFIT__SKIN_MERGE, a, st);
   if (e != BSFIT_OK) return e;
   for (k = 0; k < K; k++) {
     total += w[k].n - (size_t)p;
