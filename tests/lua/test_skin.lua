@@ -105,16 +105,7 @@ T.test("skin: tol gives uniform cubics within it, and says so in the report", fu
   T.ok(lrep.max_deviation <= 1e-3, "max_deviation " .. lrep.max_deviation)
   T.eq((L:count()), lrep.count + 3)
   T.ok((L:count()) < (E:count()), "lighter")
-  local worst = 0
-  for k, C in ipairs(secs) do
-    local a, b = C:domain()
-    for i = 0, 399 do
-      local u = i / 400
-      local t = lrep.reversed[k] and lrep.shifts[k] - (b - a) * u or lrep.shifts[k] + (b - a) * u
-      local x, y, z = L:eval(u, lrep.v_params[k])
-      worst = math.max(worst, dist(x, y, z, C:eval(t)))
-    end
-  end
+  local worst = section_error(L, lrep, secs)
   T.ok(worst <= 1e-3, "every section within tol: " .. worst)
 end)
 
