@@ -135,6 +135,8 @@ BSFIT_API bsfit_err bsfit_surface_sample_grid(const bsfit_surface *s, size_t ku,
 typedef struct bsfit_skin_opts {
   int degree_v; /**< degree q across the sections, 1..3 and < K; 0 = min(3, K-1) */
   int align;    /**< non-zero (default): orient the sections alike and line up their seams */
+  double tol;   /**< 0 (default): through the sections exactly; > 0: through periodic cubics
+                     on one uniform knot vector within tol of them (a light surface) */
 } bsfit_skin_opts;
 
 /** What skinning did, in arrays of K entries the caller provides (any may be NULL). */
@@ -143,9 +145,13 @@ typedef struct bsfit_skin_report {
   int *reversed;      /**< 1 when section k was reversed to wind like the previous one */
   double *shifts;     /**< the parameter of section k (in its own domain) at the seam u = 0 */
   size_t bad_section; /**< set by the call: the section an error is about, or (size_t)-1 */
+  size_t count;       /**< set by the call with tol: the cubics' control points N (0: none
+                           within tol, so the surface passes through the sections exactly) */
+  double max_deviation; /**< set by the call with tol: the largest distance from a section
+                             to its cubic (parametric, so an upper bound); 0 without */
 } bsfit_skin_report;
 
-/** Sets the defaults: degree_v = 0 (min(3, K-1)), align = 1. */
+/** Sets the defaults: degree_v = 0 (min(3, K-1)), align = 1, tol = 0. */
 BSFIT_API void bsfit_skin_opts_init(bsfit_skin_opts *o);
 
 /** Skins K >= 2 closed sections into one surface, periodic in u (around the sections,
@@ -159,6 +165,11 @@ BSFIT_API void bsfit_skin_opts_init(bsfit_skin_opts *o);
 ** (wrapped into its period [a_k, b_k)).
 ** The surface has as many u control points as the union of the sections' knots: sections
 ** fitted with the same knots give N + p, independently fitted ones up to the sum of theirs.
+** With o->tol > 0 the aligned sections are first replaced by least-squares periodic cubics
+** on one knot vector (uniform, plus C0 knots at the corners at least half the sections
+** share), with the smallest count keeping each within tol (N + 3 columns; rep->count,
+** rep->max_deviation), unless no count up to 4 times the largest section's does (then
+** rep->count = 0 and the surface is the exact one).
 ** @param[in]  sections  K valid, periodic, polynomial, 3D curves (any degrees >= 1).
 ** @param[in]  o         options, or NULL for the defaults.
 ** @param[out] out       the surface (freed first; arrays allocated with a). Empty on error.
@@ -167,7 +178,8 @@ BSFIT_API void bsfit_skin_opts_init(bsfit_skin_opts *o);
 **                       its interrupt flag is looked at once per section and per column.
 ** @return BSFIT_OK; BSFIT_ETOOFEW (fewer than 2 sections); BSFIT_EDEGREE (degree_v out of
 **         range); BSFIT_EINVAL (a NULL, open or rational section, out NULL); BSFIT_EDIM
-**         (a section not 3D); a code of bsfit_curve_validate (e.g. BSFIT_ENONFINITE);
+**         (a section not 3D); BSFIT_EINVAL (tol negative or not finite); a code of
+**         bsfit_curve_validate (e.g. BSFIT_ENONFINITE);
 **         BSFIT_EDEGENERATE (two consecutive sections coincide, or all); BSFIT_ESINGULAR;
 **         BSFIT_EINTR; BSFIT_ENOMEM. rep->bad_section names the section at fault
 **         (0-based) when there is one. */

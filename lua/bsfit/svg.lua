@@ -581,6 +581,9 @@ function M.curves(o)
 end
 
 -- The overview page (bsfit.overview).
+-- The scale bar of the pictures, for other pictures in data units (bsfit.svg_surface).
+M.scale_bar = scale_bar
+
 function M.index(title, items)
   return require("bsfit.overview").page(title, items)
 end

@@ -217,17 +217,7 @@ static void spline(bsfit__buf *b, const bsfit_curve *k, long h, int closed) {
 }
 
 static bsfit_err check_curve(const bsfit_curve *c, size_t k, bsfit_status *st) {
-  bsfit_err e;
-  if (c == NULL) return bsfit__fail(st, BSFIT_EINVAL, "curve %zu is NULL", k);
-  e = bsfit_curve_validate(c, st);
-  if (e != BSFIT_OK) return e;
-  if (c->dim < 2 || c->dim > 3)
-    return bsfit__fail(st, BSFIT_EDIM, "DXF holds 2D and 3D curves, curve %zu has dim %d", k,
-                       c->dim);
-  if (c->degree < 1)
-    return bsfit__fail(st, BSFIT_EDEGREE, "DXF splines have degree >= 1, curve %zu has degree 0",
-                       k);
-  return BSFIT_OK;
+  return bsfit__exchange_check_curve(c, k, "DXF", "DXF splines", st);
 }
 
 bsfit_err bsfit_curves_to_dxf(const bsfit_curve *const *c, size_t n, char **out, size_t *len,
@@ -265,14 +255,12 @@ bsfit_err bsfit_curves_to_dxf(const bsfit_curve *const *c, size_t n, char **out,
 
 bsfit_err bsfit_curves_write_dxf(const bsfit_curve *const *c, size_t n, const char *path,
                                  bsfit_status *st) {
-  bsfit__buf b;
+  char *text = NULL;
+  size_t len = 0;
   bsfit_err e;
   if (path == NULL) return bsfit__fail(st, BSFIT_EINVAL, "no file name to write to");
-  bsfit__buf_init(&b, NULL);
-  e = bsfit_curves_to_dxf(c, n, &b.data, &b.len, NULL, st);
-  if (e != BSFIT_OK) return e;
-  b.cap = b.len + 1;
-  return bsfit__buf_write(&b, path, st);
+  e = bsfit_curves_to_dxf(c, n, &text, &len, NULL, st);
+  return bsfit__exchange_write(e, text, len, path, st);
 }
 
 /* }==================================================================== */

@@ -12,7 +12,6 @@
 #include <stdio.h>
 #include <string.h>
 #include <stdlib.h>
-#include <time.h>
 
 /* {====================================================================
 ** Records
@@ -106,17 +105,7 @@ static size_t start_section(bsfit__buf *b, const char *what) {
 /* The file's date: SOURCE_DATE_EPOCH when set to a plain decimal count of seconds (the
 ** reproducible-builds convention: the same curve then gives the same bytes), else now. */
 static void iges_date(char out[16]) {
-  const char *epoch = getenv("SOURCE_DATE_EPOCH");
-  time_t now = time(NULL);
-  struct tm tmv;
-  if (epoch != NULL && *epoch >= '0' && *epoch <= '9') {
-    char *end;
-    unsigned long long v = strtoull(epoch, &end, 10);
-    if (*end == '\0' && v <= 253402300799ULL) now = (time_t)v; /* up to 9999-12-31 */
-  }
-  if (now == (time_t)-1 || gmtime_r(&now, &tmv) == NULL ||
-      strftime(out, 16, "%Y%m%d.%H%M%S", &tmv) != 15)
-    strcpy(out, "19700101.000000");
+  bsfit__exchange_time("%Y%m%d.%H%M%S", out, 16, "19700101.000000");
 }
 
 /* The 25 parameters of the Global section (IGES 5.3, 2.2.4.3); units millimetres. */
@@ -328,23 +317,19 @@ bsfit_err bsfit_surface_to_iges(const bsfit_surface *s, char **out, size_t *len,
 /* }==================================================================== */
 
 bsfit_err bsfit_curve_write_iges(const bsfit_curve *c, const char *path, bsfit_status *st) {
-  bsfit__buf b;
+  char *text = NULL;
+  size_t len = 0;
   bsfit_err e;
   if (path == NULL) return bsfit__fail(st, BSFIT_EINVAL, "no file name to write to");
-  bsfit__buf_init(&b, NULL);
-  e = curve_iges(c, path, &b.data, &b.len, NULL, st);
-  if (e != BSFIT_OK) return e;
-  b.cap = b.len + 1;
-  return bsfit__buf_write(&b, path, st);
+  e = curve_iges(c, path, &text, &len, NULL, st);
+  return bsfit__exchange_write(e, text, len, path, st);
 }
 
 bsfit_err bsfit_surface_write_iges(const bsfit_surface *s, const char *path, bsfit_status *st) {
-  bsfit__buf b;
+  char *text = NULL;
+  size_t len = 0;
   bsfit_err e;
   if (path == NULL) return bsfit__fail(st, BSFIT_EINVAL, "no file name to write to");
-  bsfit__buf_init(&b, NULL);
-  e = surface_iges(s, path, &b.data, &b.len, NULL, st);
-  if (e != BSFIT_OK) return e;
-  b.cap = b.len + 1;
-  return bsfit__buf_write(&b, path, st);
+  e = surface_iges(s, path, &text, &len, NULL, st);
+  return bsfit__exchange_write(e, text, len, path, st);
 }

@@ -117,8 +117,5 @@ bsfit_err bsfit_curves_write_iges(const bsfit_curve *const *c, size_t n, const c
   char *text = NULL;
   size_t len = 0;
   bsfit_err e = bsfit_curves_to_iges(c, n, &text, &len, NULL, st);
-  if (e != BSFIT_OK) return e;
-  e = bsfit__write_atomic(path, text, len, 1, st);
-  bsfit__free(NULL, text, len + 1);
-  return e;
+  return bsfit__exchange_write(e, text, len, path, st);
 }

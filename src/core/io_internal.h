@@ -35,6 +35,20 @@ bsfit_err bsfit__buf_take(bsfit__buf *b, char **out, size_t *len, bsfit_status *
 bsfit_err bsfit__write_atomic(const char *path, const char *data, size_t len, int durable,
                               bsfit_status *st);
 
+/* The exchange writers (io_exchange.c). check_curve: c (curve k of a file) is valid, 2D or
+** 3D and of degree >= 1, or an error naming the format ("STEP") and its kind of curve
+** ("STEP B-spline curves"). write: the text a writer made with the default allocator (made:
+** its status; nothing to write unless BSFIT_OK) written to path atomically, then freed. */
+bsfit_err bsfit__exchange_check_curve(const bsfit_curve *c, size_t k, const char *format,
+                                      const char *kind, bsfit_status *st);
+bsfit_err bsfit__exchange_write(bsfit_err made, char *text, size_t len, const char *path,
+                                bsfit_status *st);
+/* The file's time stamp, UTC, by strftime's fmt into out (size bytes): SOURCE_DATE_EPOCH
+** when set to a plain decimal count of seconds (the reproducible-builds convention: the same
+** geometry then gives the same bytes), else now; fallback (a time of that format) when the
+** time cannot be had or formatted. */
+void bsfit__exchange_time(const char *fmt, char *out, size_t size, const char *fallback);
+
 /* Writes a finished buffer atomically and frees it (whatever the outcome). */
 bsfit_err bsfit__buf_write(bsfit__buf *b, const char *path, bsfit_status *st);
 

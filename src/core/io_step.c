@@ -15,7 +15,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 /* {====================================================================
 ** Tokens and entities
@@ -132,17 +131,7 @@ static void put_reals(bsfit__buf *b, const double *x, size_t n, size_t stride) {
 /* The time of writing as ISO 8601, or SOURCE_DATE_EPOCH (seconds since 1970, UTC)
 ** when set to a plain decimal number: the same geometry then gives the same bytes. */
 static void step_time(char out[32]) {
-  const char *epoch = getenv("SOURCE_DATE_EPOCH");
-  time_t now = time(NULL);
-  struct tm tmv;
-  if (epoch != NULL && *epoch >= '0' && *epoch <= '9') {
-    char *end;
-    unsigned long long v = strtoull(epoch, &end, 10);
-    if (*end == '\0' && v <= 253402300799ULL) now = (time_t)v; /* up to 9999-12-31 */
-  }
-  if (now == (time_t)-1 || gmtime_r(&now, &tmv) == NULL ||
-      strftime(out, 32, "%Y-%m-%dT%H:%M:%S", &tmv) == 0)
-    strcpy(out, "1970-01-01T00:00:00");
+  bsfit__exchange_time("%Y-%m-%dT%H:%M:%S", out, 32, "1970-01-01T00:00:00");
 }
 
 /* Part 21 strings: a quote is doubled; bytes outside printable ASCII become '_'. */
@@ -210,17 +199,7 @@ static void product(step *s, long rep) {
 ** ===================================================================== */
 
 static bsfit_err check_curve(const bsfit_curve *c, size_t k, bsfit_status *st) {
-  bsfit_err e;
-  if (c == NULL) return bsfit__fail(st, BSFIT_EINVAL, "curve %zu is NULL", k);
-  e = bsfit_curve_validate(c, st);
-  if (e != BSFIT_OK) return e;
-  if (c->dim < 2 || c->dim > 3)
-    return bsfit__fail(st, BSFIT_EDIM, "STEP holds 2D and 3D curves, curve %zu has dim %d", k,
-                       c->dim);
-  if (c->degree < 1)
-    return bsfit__fail(st, BSFIT_EDEGREE, "STEP B-spline curves have degree >= 1, curve %zu "
-                                          "has degree 0", k);
-  return BSFIT_OK;
+  return bsfit__exchange_check_curve(c, k, "STEP", "STEP B-spline curves", st);
 }
 
 /* One clamped curve (its points, then the curve); returns the curve's number. closed:
@@ -392,23 +371,19 @@ bsfit_err bsfit_surface_to_step(const bsfit_surface *S, const char *name, char *
 
 bsfit_err bsfit_curves_write_step(const bsfit_curve *const *c, size_t n, const char *path,
                                   bsfit_status *st) {
-  bsfit__buf b;
+  char *text = NULL;
+  size_t len = 0;
   bsfit_err e;
   if (path == NULL) return bsfit__fail(st, BSFIT_EINVAL, "no file name to write to");
-  bsfit__buf_init(&b, NULL);
-  e = bsfit_curves_to_step(c, n, path, &b.data, &b.len, NULL, st);
-  if (e != BSFIT_OK) return e;
-  b.cap = b.len + 1;
-  return bsfit__buf_write(&b, path, st);
+  e = bsfit_curves_to_step(c, n, path, &text, &len, NULL, st);
+  return bsfit__exchange_write(e, text, len, path, st);
 }
 
 bsfit_err bsfit_surface_write_step(const bsfit_surface *S, const char *path, bsfit_status *st) {
-  bsfit__buf b;
+  char *text = NULL;
+  size_t len = 0;
   bsfit_err e;
   if (path == NULL) return bsfit__fail(st, BSFIT_EINVAL, "no file name to write to");
-  bsfit__buf_init(&b, NULL);
-  e = bsfit_surface_to_step(S, path, &b.data, &b.len, NULL, st);
-  if (e != BSFIT_OK) return e;
-  b.cap = b.len + 1;
-  return bsfit__buf_write(&b, path, st);
+  e = bsfit_surface_to_step(S, path, &text, &len, NULL, st);
+  return bsfit__exchange_write(e, text, len, path, st);
 }

@@ -19,7 +19,7 @@
 ** Rational sections are refused: interpolating their homogeneous points across can give
 ** non-positive weights between the sections.
 */
-#include "internal.h"
+#include "skin_internal.h"
 
 #include <float.h>
 #include <math.h>
@@ -121,59 +121,26 @@ static bsfit_err section_shape(const bsfit_curve *c, shape *sh, const bsfit_allo
   return e;
 }
 
-/* c rotated so that its parameter u (in [0, 1)) becomes 0: u is made a knot, then the
-** period's knots and the distinct control points are rotated (span j of c is span 0 of
-** out, so control point j becomes control point 0). out's period is [0, 1] again. */
-static bsfit_err rotate_start(const bsfit_curve *c, double u, bsfit_curve *out,
-                              const bsfit_allocator *a, bsfit_status *st) {
-  size_t p = (size_t)c->degree, N, i, j, d = (size_t)c->dim;
-  double *t, *P;
-  bsfit_curve r;
-  bsfit_err e;
-  bsfit_curve_init(&r);
-  e = bsfit_knots_multiplicity(c->knots, c->n + p + 1, u) == 0
-          ? bsfit_curve_insert_knot(c, u, 1, &r, st)
-          : bsfit_curve_copy(c, &r, a, st);
-  if (e != BSFIT_OK) return e;
-  N = r.n - p;
-  for (j = 0; j < N && r.knots[p + j] != u; j++) continue;
-  if (j == N) j = 0; /* u == 0 already, up to the period's end */
-  t = bsfit__alloc(a, (N + 1) * sizeof(double));
-  P = bsfit__alloc(a, N * d * sizeof(double));
-  if (t == NULL || P == NULL) {
-    e = bsfit__fail(st, BSFIT_ENOMEM, "out of memory for a section of %zu points", N);
-  } else {
-    for (i = 0; i < N; i++) {
-      size_t s = (i + j) % N;
-      /* knots after the period's end come back 1 later; the end is exactly 1 */
-      t[i] = i + j < N ? r.knots[p + s] - u : r.knots[p + s] + (1.0 - u);
-      memcpy(P + i * d, r.ctrl + s * d, d * sizeof(double));
-    }
-    t[0] = 0.0;
-    t[N] = 1.0;
-    e = bsfit_curve_new_periodic(out, c->degree, c->dim, N, t, P, NULL, a, st);
-  }
-  bsfit__free(a, t, (N + 1) * sizeof(double));
-  bsfit__free(a, P, N * d * sizeof(double));
-  bsfit_curve_free(&r);
-  return e;
-}
-
 /* Where section c's start goes: the point of c nearest to the previous start `prev`
 ** carried over from the previous shape to this one (centroid, mean radius). A parameter
-** within 1e-10 of a knot is moved onto it, so no sliver span is made. */
+** near a knot (BSFIT__SKIN_MERGE for a C0 knot, BSFIT__SKIN_SNAP for others) is moved
+** onto the nearest, so no sliver span is made: closest points at a corner land off it. */
 static bsfit_err seam_param(const bsfit_curve *c, const shape *ps, const shape *sh,
                             const double *prev, double *u, const bsfit_allocator *a,
                             bsfit_status *st) {
-  double P[3], scale = ps->radius > 0 ? sh->radius / ps->radius : 1.0;
+  double P[3], scale = ps->radius > 0 ? sh->radius / ps->radius : 1.0, best, snap;
   size_t i, p = (size_t)c->degree;
   int t;
   bsfit_err e;
   for (t = 0; t < 3; t++) P[t] = sh->c[t] + (prev[t] - ps->c[t]) * scale;
   e = bsfit_curve_closest(c, P, u, NULL, a, st);
   if (e != BSFIT_OK) return e;
-  for (i = p; i <= c->n; i++)
-    if (fabs(c->knots[i] - *u) < 1e-10) *u = c->knots[i];
+  for (i = p, best = HUGE_VAL, snap = *u; i <= c->n; i++) {
+    double d = fabs(c->knots[i] - *u);
+    int corner = bsfit_knots_multiplicity(c->knots, c->n + p + 1, c->knots[i]) >= (int)p;
+    if (d < best && d < (corner ? BSFIT__SKIN_MERGE : BSFIT__SKIN_SNAP)) best = d, snap = c->knots[i];
+  }
+  *u = snap;
   if (*u >= 1.0) *u = 0.0;
   return BSFIT_OK;
 }
@@ -190,11 +157,13 @@ static bsfit_err orient_section(const bsfit_curve *c, size_t k, int align, bsfit
   int rev = 0;
   bsfit_curve tmp;
   bsfit_err e = normalise(c, &w[k], a, st);
+  if (e == BSFIT_OK) e = bsfit__skin_seam_whole(&w[k], a, st);
   if (e == BSFIT_OK) e = section_shape(&w[k], &sh[k], a, st);
   if (e != BSFIT_OK || !align || k == 0) goto done;
   if (dot3(sh[k].area, sh[k - 1].area) < 0) {
     rev = 1;
     if ((e = bsfit_curve_reverse(&w[k], &w[k], st)) != BSFIT_OK) return e;
+    if ((e = bsfit__skin_seam_whole(&w[k], a, st)) != BSFIT_OK) return e;
     sh[k].area[0] = -sh[k].area[0], sh[k].area[1] = -sh[k].area[1];
     sh[k].area[2] = -sh[k].area[2];
   }
@@ -202,7 +171,7 @@ static bsfit_err orient_section(const bsfit_curve *c, size_t k, int align, bsfit
   e = seam_param(&w[k], &sh[k - 1], &sh[k], start, &u, a, st);
   if (e != BSFIT_OK || u == 0.0) goto done;
   bsfit_curve_init(&tmp);
-  e = rotate_start(&w[k], u, &tmp, a, st);
+  e = bsfit__skin_rotate(&w[k], u, &tmp, a, st);
   if (e == BSFIT_OK) bsfit_curve_move(&tmp, &w[k]);
   bsfit_curve_free(&tmp);
 done:
@@ -214,91 +183,7 @@ done:
 
 /* }==================================================================== */
 
-/* {====================================================================
-** Compatibility: common degree, common knots
-** ===================================================================== */
-
-static int cmp_double(const void *x, const void *y) {
-  double a = *(const double *)x, b = *(const double *)y;
-  return (a > b) - (a < b);
-}
-
-/* The runs of equal values of the period knots t_0..t_{N-1} of c, one at a time:
-** *i is the index of the next run; returns its length (0 at the end). */
-static int next_run(const bsfit_curve *c, size_t *i) {
-  size_t p = (size_t)c->degree, N = c->n - p, j;
-  if (*i >= N) return 0;
-  for (j = *i + 1; j < N && c->knots[p + j] == c->knots[p + *i]; j++) continue;
-  return (int)(j - *i);
-}
-
-/* Index of x in the sorted distinct values v[0..D-1] (x is one of them). */
-static size_t find_value(const double *v, size_t D, double x) {
-  size_t lo = 0, hi = D;
-  while (hi - lo > 1) {
-    size_t mid = lo + (hi - lo) / 2;
-    if (v[mid] <= x) lo = mid;
-    else hi = mid;
-  }
-  return lo;
-}
-
-/* The knots section k lacks from the union (value v[d] to multiplicity need[d]) into X;
-** returns their count. Both lists are sorted, so one merge walk does it. */
-static size_t missing_knots(const bsfit_curve *c, const double *v, const int *need, size_t D,
-                            double *X) {
-  size_t i = 0, d, nx = 0;
-  int m = next_run(c, &i), p = c->degree;
-  for (d = 0; d < D; d++) {
-    int have = 0;
-    if (m > 0 && c->knots[(size_t)p + i] == v[d]) {
-      have = m;
-      i += (size_t)m;
-      m = next_run(c, &i);
-    }
-    while (have++ < need[d]) X[nx++] = v[d];
-  }
-  return nx;
-}
-
-/* Elevates every section to the highest degree, then refines each to the union of the
-** period knots, each value with the largest multiplicity any section gives it. */
-static bsfit_err make_compatible(bsfit_curve *w, size_t K, const bsfit_allocator *a,
-                                 bsfit_status *st) {
-  size_t k, i, j, D, total = 0, nx, bytes;
-  int p = 0, m, *need;
-  double *v, *X;
-  bsfit_err e = BSFIT_OK;
-  for (k = 0; k < K; k++) p = w[k].degree > p ? w[k].degree : p;
-  for (k = 0; k < K && e == BSFIT_OK; k++)
-    if (w[k].degree < p) e = bsfit_curve_elevate(&w[k], p - w[k].degree, &w[k], st);
-  if (e != BSFIT_OK) return e;
-  for (k = 0; k < K; k++) total += w[k].n - (size_t)p;
-  bytes = total * (2 * sizeof(double) + sizeof(int));
-  v = bsfit__alloc(a, bytes);
-  if (v == NULL) return bsfit__fail(st, BSFIT_ENOMEM, "out of memory for %zu knots", total);
-  X = v + total;
-  need = (int *)(X + total);
-  for (k = 0, j = 0; k < K; k++)
-    for (i = 0; i < w[k].n - (size_t)p; i++) v[j++] = w[k].knots[(size_t)p + i];
-  qsort(v, total, sizeof(double), cmp_double);
-  for (i = 0, D = 0; i < total; i++)
-    if (D == 0 || v[i] != v[D - 1]) need[D] = 0, v[D++] = v[i];
-  for (k = 0; k < K; k++)
-    for (i = 0; (m = next_run(&w[k], &i)) > 0; i += (size_t)m) {
-      size_t d = find_value(v, D, w[k].knots[(size_t)p + i]);
-      if (m > need[d]) need[d] = m;
-    }
-  for (k = 0; k < K && e == BSFIT_OK; k++) {
-    if (bsfit__interrupted(a)) e = bsfit__fail(st, BSFIT_EINTR, "skinning interrupted");
-    nx = e == BSFIT_OK ? missing_knots(&w[k], v, need, D, X) : 0;
-    if (nx > 0) e = bsfit_curve_refine(&w[k], X, nx, &w[k], st);
-  }
-  bsfit__free(a, v, bytes);
-  return e;
-}
-
-/* After make_compatible every section must have the same knots, exactly. */
+/* After bsfit__skin_compatible every section must have the same knots, exactly. */
 static bsfit_err check_compatible(const bsfit_curve *w, size_t K, bsfit_status *st) {
   size_t k;
   for (k = 1; k < K; k++)
@@ -387,6 +272,20 @@ static bsfit_err interpolate_net(const bsfit_curve *w, size_t K, int q, const do
 void bsfit_skin_opts_init(bsfit_skin_opts *o) {
   o->degree_v = 0;
   o->align = 1;
+  o->tol = 0.0;
+}
+
+/* With a tolerance: the sections replaced by uniform cubics within it (the report says
+** which count, and how far). */
+static bsfit_err approximate(bsfit_curve *w, size_t K, double tol, bsfit_skin_report *rep,
+                             const bsfit_allocator *a, bsfit_status *st) {
+  size_t N;
+  double dev;
+  bsfit_err e;
+  if (!(tol > 0)) return BSFIT_OK;
+  e = bsfit__skin_approximate(w, K, tol, &N, &dev, a, st);
+  if (e == BSFIT_OK && rep != NULL) rep->count = N, rep->max_deviation = dev;
+  return e;
 }
 
 bsfit_err bsfit_surface_skin(const bsfit_curve *const *sections, size_t K,
@@ -401,8 +300,10 @@ bsfit_err bsfit_surface_skin(const bsfit_curve *const *sections, size_t K,
   int q;
   bsfit_err e;
   if (o == NULL) bsfit_skin_opts_init(&def), o = &def;
-  if (rep != NULL) rep->bad_section = (size_t)-1;
+  if (rep != NULL) rep->bad_section = (size_t)-1, rep->count = 0, rep->max_deviation = 0.0;
   if (out == NULL) return bsfit__fail(st, BSFIT_EINVAL, "no output surface");
+  if (!(o->tol >= 0 && o->tol < HUGE_VAL))
+    return bsfit__fail(st, BSFIT_EINVAL, "tolerance %g: must be 0 (exact) or positive", o->tol);
   if ((e = check_sections(sections, K, o->degree_v, rep, st)) != BSFIT_OK) return e;
   q = o->degree_v > 0 ? o->degree_v : (K - 1 < 3 ? (int)K - 1 : 3);
   bytes = bsfit__mulsize(K, sizeof *w + sizeof *sh + sizeof *v);
@@ -413,7 +314,8 @@ bsfit_err bsfit_surface_skin(const bsfit_curve *const *sections, size_t K,
   for (k = 0; k < K; k++) bsfit_curve_init(&w[k]);
   for (k = 0, e = BSFIT_OK; k < K && e == BSFIT_OK; k++)
     e = orient_section(sections[k], k, o->align, w, sh, rep, a, st);
-  if (e == BSFIT_OK) e = make_compatible(w, K, a, st);
+  if (e == BSFIT_OK) e = approximate(w, K, o->tol, rep, a, st);
+  if (e == BSFIT_OK) e = bsfit__skin_compatible(w, K, a, st);
   if (e == BSFIT_OK) e = check_compatible(w, K, st);
   if (e == BSFIT_OK) e = v_params(w, K, v, rep, st);
   if (e == BSFIT_OK) e = interpolate_net(w, K, q, v, out, a, st);

@@ -1,15 +1,17 @@
 /*
 ** lskin.c
-** bs.surface.skin(sections [, {degree_v = 0, align = true}]) --> Surface, report
+** bs.surface.skin(sections [, {degree_v = 0, align = true, tol = 0}]) --> Surface, report
 **   sections: a list of K >= 2 closed (periodic), polynomial, 3D curves.
 **   report: {v_params = {v_1..v_K}, reversed = {bool..}, shifts = {s_1..s_K}}:
 **   S:eval(u, v_params[k]) is section k at its parameter shifts[k] + (b-a) u (reversed:
-**   shifts[k] - (b-a) u). Misuse (a bad list, open, rational or 2D sections) raises,
+**   shifts[k] - (b-a) u); with tol > 0 also count (the uniform cubics' count, 0: none
+**   within tol, so exact) and max_deviation. Misuse (a bad list, open, rational or 2D sections) raises,
 **   naming the section from 1; coincident sections give nil, message, "EDEGENERATE".
 ** The core is bsfit_surface_skin (src/core/surface_skin.c, docs/skinning.md).
 */
 #include "laux.h"
 
+#include <math.h>
 #include <stdio.h>
 
 /* The sections of the list at arg, checked, as an array of pointers in a userdata pushed
@@ -50,16 +52,19 @@ static void push_numbers(lua_State *L, const double *x, size_t n) {
 }
 
 static int surface_skin(lua_State *L) {
-  static const char *const opts[] = {"degree_v", "align", NULL};
+  static const char *const opts[] = {"degree_v", "align", "tol", NULL};
   size_t K, k;
   const bsfit_curve *const *c;
   int t, align;
   lua_Integer q;
+  lua_Number tol;
   luaL_checktype(L, 1, LUA_TTABLE);
   lua_settop(L, 2); /* the options stay at 2, the scratch goes above */
   t = bsfit__lua_opttable(L, 2, opts);
   q = opt_integer(L, t, "degree_v", 0);
   align = opt_boolean(L, t, "align", 1);
+  tol = opt_number(L, t, "tol", 0);
+  luaL_argcheck(L, tol >= 0 && tol < HUGE_VAL, t, "field 'tol' must be 0 (exact) or positive");
   c = check_sections(L, 1, &K);
   bsfit_skin_opts o;
   bsfit_skin_report rep;
@@ -75,6 +80,7 @@ static int surface_skin(lua_State *L) {
   bsfit_skin_opts_init(&o);
   o.degree_v = (int)q;
   o.align = align;
+  o.tol = (double)tol;
   v = (double *)lua_newuserdatauv(L, K * (2 * sizeof(double) + sizeof(int)), 0);
   shifts = v + K;
   rev = (int *)(shifts + K);
@@ -102,6 +108,12 @@ static int surface_skin(lua_State *L) {
     lua_rawseti(L, -2, (lua_Integer)k + 1);
   }
   lua_setfield(L, -2, "reversed");
+  if (o.tol > 0) {
+    lua_pushinteger(L, (lua_Integer)rep.count);
+    lua_setfield(L, -2, "count");
+    lua_pushnumber(L, rep.max_deviation);
+    lua_setfield(L, -2, "max_deviation");
+  }
   return 2;
 }
 

@@ -67,6 +67,10 @@ end)
 local ok = 0
 for _, r in ipairs(res.rows) do if r.status == "ok" then ok = ok + 1 end end
 print(("cloud 10^6 points, 50 slices, whole pipeline -j %d: %.3f s (%d sections ok; target < 2 s)"):format(jobs, t, ok))
+print(("  of which: read to the last fit %.3f s, skin %.3f s (%d x %d net, tol %.3g), files %.3f s")
+  :format(res.ms / 1000, res.step_ms.skin / 1000, res.surface and res.surface:count() or 0,
+          res.surface and select(2, res.surface:count()) or 0, res.skin and res.skin.tol or 0,
+          res.step_ms.write / 1000))
 
 local mesh = DIR .. "/mesh.ply"
 local nt = write_mesh(mesh, 1000, 500)
@@ -78,10 +82,15 @@ t = best(3, function() slices = bs.scan.slice(scan, { axis = "z", slices = 100 }
 local loops = 0
 for _, s in ipairs(slices) do loops = loops + #s.loops end
 print(("mesh %d triangles, 100 slices: %.3f s (%d loops; target < 1 s)"):format(nt, t, loops))
-t = best(1, function()
-  res = pipeline.run(mesh, { slices = 100, outdir = DIR .. "/mesh_out", jobs = jobs })
-end)
-print(("mesh, 100 slices, whole pipeline -j %d: %.3f s"):format(jobs, t))
+-- the whole pipeline on the mesh: its loops are 2000 points each (SKIP_MESH_PIPELINE=1 skips
+-- it: auto takes 13 s on some of these loops, see docs/scan.md)
+if os.getenv("SKIP_MESH_PIPELINE") ~= "1" then
+  t = best(1, function()
+    res = pipeline.run(mesh, { slices = 100, outdir = DIR .. "/mesh_out", jobs = jobs })
+  end)
+  print(("mesh, 100 slices, whole pipeline -j %d: %.3f s (skin %.3f s, files %.3f s)")
+    :format(jobs, t, res.step_ms.skin / 1000, res.step_ms.write / 1000))
+end
 
 -- the same cloud as text: XYZ and ASCII PLY
 do

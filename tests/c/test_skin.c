@@ -58,19 +58,50 @@ static void random_section(test_rng *r, double z, bsfit_curve *c) {
   assert_int_equal(bsfit_curve_new_periodic(c, p, 3, N, t, P, NULL, NULL, &st), BSFIT_OK);
 }
 
-/* max |S(u, v_k) - C_k(t_k(u))| over 200 u, t_k from the report's shift and direction */
+static double dist3(const double *x, const double *y) {
+  return sqrt((x[0] - y[0]) * (x[0] - y[0]) + (x[1] - y[1]) * (x[1] - y[1]) +
+              (x[2] - y[2]) * (x[2] - y[2]));
+}
+
+/* |X - C(t)| minimised over t within 0.5% of the period around t0 (h: the period): 101
+** samples, then golden sections around the best. */
+static double local_distance(const bsfit_curve *C, double t0, double h, const double *X) {
+  double y[3], best = HUGE_VAL, bt = t0, lo, hi, g = (sqrt(5.0) - 1) / 2;
+  int i;
+  for (i = -50; i <= 50; i++) {
+    assert_int_equal(bsfit_curve_eval(C, t0 + i * 1e-4 * h, y, NULL), BSFIT_OK);
+    if (dist3(X, y) < best) best = dist3(X, y), bt = t0 + i * 1e-4 * h;
+  }
+  lo = bt - 1e-4 * h;
+  hi = bt + 1e-4 * h;
+  for (i = 0; i < 100; i++) {
+    double c = hi - g * (hi - lo), d = lo + g * (hi - lo), yc[3], yd[3];
+    assert_int_equal(bsfit_curve_eval(C, c, yc, NULL), BSFIT_OK);
+    assert_int_equal(bsfit_curve_eval(C, d, yd, NULL), BSFIT_OK);
+    if (dist3(X, yc) < dist3(X, yd)) hi = d;
+    else lo = c;
+  }
+  assert_int_equal(bsfit_curve_eval(C, (lo + hi) / 2, y, NULL), BSFIT_OK);
+  return fmin(best, dist3(X, y));
+}
+
+/* max distance from S(u, v_k) to C_k over 200 u: at u = 0 to C_k(shift) exactly; elsewhere
+** near t_k(u) from the report's shift and direction (exactly there unless C0 knots of
+** different sections were lined up, which reparametrises pieces by less than 1e-3 of the
+** period). */
 static double section_error(const bsfit_surface *S, const bsfit_curve *C, double v, double shift,
                             int reversed) {
   double a, b, worst = 0;
   int i;
   bsfit_curve_domain(C, &a, &b);
   for (i = 0; i < 200; i++) {
-    double u = i / 200.0, x[3], y[3];
+    double u = i / 200.0, x[3], y[3], e;
     double t = reversed ? shift - (b - a) * u : shift + (b - a) * u;
     assert_int_equal(bsfit_surface_eval(S, u, v, x, NULL), BSFIT_OK);
     assert_int_equal(bsfit_curve_eval(C, t, y, NULL), BSFIT_OK);
-    worst = fmax(worst, sqrt((x[0] - y[0]) * (x[0] - y[0]) + (x[1] - y[1]) * (x[1] - y[1]) +
-                             (x[2] - y[2]) * (x[2] - y[2])));
+    e = dist3(x, y);
+    if (i > 0 && e > 1e-13) e = local_distance(C, t, b - a, x);
+    worst = fmax(worst, e);
   }
   return worst;
 }
@@ -104,7 +135,7 @@ static void test_interpolates_sections(void **state) {
     const bsfit_curve *ptr[KMAX];
     double v[KMAX], shifts[KMAX], size, ua, ub, va, vb;
     int rev[KMAX];
-    bsfit_skin_report rep = {v, rev, shifts, 0};
+    bsfit_skin_report rep = {v, rev, shifts, 0, 0, 0};
     bsfit_skin_opts o;
     bsfit_surface S;
     bsfit_status st;
@@ -151,7 +182,7 @@ static void test_ruled(void **state) {
     const bsfit_curve *ptr[2] = {&C[0], &C[1]};
     double v[2], sh[2], size;
     int rev[2];
-    bsfit_skin_report rep = {v, rev, sh, 0};
+    bsfit_skin_report rep = {v, rev, sh, 0, 0, 0};
     bsfit_surface S;
     random_section(&r, 0.0, &C[0]);
     random_section(&r, rng_range(&r, 1, 10), &C[1]);
@@ -270,7 +301,7 @@ static double skin_vase(const vase *s, size_t K, const double *theta, const int 
   bsfit_curve C[KMAX];
   const bsfit_curve *ptr[KMAX];
   double v[KMAX], err;
-  bsfit_skin_report rep = {v, rep_rev, shifts, 0};
+  bsfit_skin_report rep = {v, rep_rev, shifts, 0, 0, 0};
   bsfit_skin_opts o;
   bsfit_surface S;
   size_t k;
@@ -353,6 +384,77 @@ static void test_twisted_inputs(void **state) {
 /* }==================================================================== */
 
 /* {====================================================================
+** Within a tolerance: light uniform cubics
+** ===================================================================== */
+
+/* max over 1000 u of |S(u, v) - C(t(u))|, t from the report's shift and direction */
+static double section_error_dense(const bsfit_surface *S, const bsfit_curve *C, double v,
+                                  double shift, int reversed) {
+  double a, b, worst = 0;
+  int i;
+  bsfit_curve_domain(C, &a, &b);
+  for (i = 0; i < 1000; i++) {
+    double u = (i + 0.37) / 1000.0, x[3], y[3];
+    double t = reversed ? shift - (b - a) * u : shift + (b - a) * u;
+    assert_int_equal(bsfit_surface_eval(S, u, v, x, NULL), BSFIT_OK);
+    assert_int_equal(bsfit_curve_eval(C, t, y, NULL), BSFIT_OK);
+    worst = fmax(worst, dist3(x, y));
+  }
+  return worst;
+}
+
+/* Random stacks skinned with tol: when a count is reported, the surface has count + 3
+** columns, no sliver span, and every section is within tol of it (1000 points each, against the
+** section at the report's parameter); with a tol no cubic count reaches, the exact surface. */
+static void test_tolerance(void **state) {
+  test_rng r = {0x70170170ULL};
+  int seed, light = 0;
+  (void)state;
+  for (seed = 0; seed < 40; seed++) {
+    size_t K = 2 + (size_t)(rng_uniform(&r) * 7), k, i;
+    bsfit_curve C[KMAX];
+    const bsfit_curve *ptr[KMAX];
+    double v[KMAX], shifts[KMAX], worst = 0;
+    int rev[KMAX];
+    bsfit_skin_report rep = {v, rev, shifts, 0, 0, 0};
+    bsfit_skin_opts o;
+    bsfit_surface S;
+    bsfit_status st;
+    for (k = 0; k < K; k++) {
+      random_section(&r, 2.0 * (double)k, &C[k]);
+      ptr[k] = &C[k];
+    }
+    bsfit_skin_opts_init(&o);
+    o.tol = seed % 10 == 9 ? 1e-13 : pow(10.0, -3.0 * rng_uniform(&r)) * 0.3;
+    bsfit_surface_init(&S);
+    assert_int_equal(bsfit_surface_skin(ptr, K, &o, &S, &rep, NULL, &st), BSFIT_OK);
+    for (k = 0; k < K; k++)
+      worst = fmax(worst, section_error_dense(&S, &C[k], v[k], shifts[k], rev[k]));
+    if (rep.count > 0) {
+      light++;
+      assert_int_equal(S.nu, rep.count + 3);
+      for (i = 1; i <= rep.count; i++) { /* uniform spans, halved at most next to a corner */
+        double span = S.knots_u[3 + i] - S.knots_u[2 + i];
+        assert_true(span == 0 || span >= 0.5 / (double)rep.count);
+      }
+      assert_true(rep.max_deviation <= o.tol);
+      if (worst > o.tol) fail_msg("seed %d: %.3g from a section, tol %.3g", seed, worst, o.tol);
+    } else {
+      assert_true(rep.max_deviation == 0);
+      assert_true(worst <= 1e-12 * net_size(&S));
+    }
+    bsfit_surface_free(&S);
+    for (k = 0; k < K; k++) bsfit_curve_free(&C[k]);
+  }
+  print_message("tolerance: %d of 40 stacks light\n", light);
+  /* random sections of degree 1 and 2 have corners that uniform cubics round off beyond
+  ** tol up to the count cap: those stacks take the exact branch */
+  assert_true(light >= 5);
+}
+
+/* }==================================================================== */
+
+/* {====================================================================
 ** Errors, memory, interruption
 ** ===================================================================== */
 
@@ -361,7 +463,7 @@ static void test_errors(void **state) {
   bsfit_curve C[3], open, flat, rat;
   const bsfit_curve *ptr[3];
   double pts[4 * 3] = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0}, w[4] = {1, 2, 1, 2};
-  bsfit_skin_report rep = {NULL, NULL, NULL, 0};
+  bsfit_skin_report rep = {NULL, NULL, NULL, 0, 0, 0};
   bsfit_skin_opts o;
   bsfit_surface S;
   bsfit_status st;
@@ -379,6 +481,12 @@ static void test_errors(void **state) {
   assert_int_equal(bsfit_surface_skin(ptr, 3, &o, &S, NULL, NULL, &st), BSFIT_EDEGREE);
   o.degree_v = 4;
   assert_int_equal(bsfit_surface_skin(ptr, 3, &o, &S, NULL, NULL, &st), BSFIT_EDEGREE);
+  o.degree_v = 0;
+  o.tol = -1;
+  assert_int_equal(bsfit_surface_skin(ptr, 3, &o, &S, NULL, NULL, &st), BSFIT_EINVAL);
+  o.tol = NAN;
+  assert_int_equal(bsfit_surface_skin(ptr, 3, &o, &S, NULL, NULL, &st), BSFIT_EINVAL);
+  o.tol = 0;
   /* an open section, a 2D one, a rational one: each named */
   bsfit_curve_init(&open);
   assert_int_equal(bsfit_curve_new(&open, 2, 3, 4, NULL, pts, NULL, 0, NULL, NULL), BSFIT_OK);
@@ -425,31 +533,39 @@ static void test_enomem_and_interrupt(void **state) {
   volatile int stop = 1;
   long n;
   size_t k;
+  int pass;
+  bsfit_skin_opts o;
+  bsfit_skin_report rep = {NULL, NULL, NULL, 0, 0, 0};
   (void)state;
   for (k = 0; k < 4; k++) {
     random_section(&r, (double)k, &C[k]);
     ptr[k] = &C[k];
   }
-  for (n = 1;; n++) {
-    bsfit_err e;
-    memset(&cnt, 0, sizeof cnt);
-    cnt.fail_at = n;
-    a.fn = counting_alloc;
-    a.ud = &cnt;
-    a.interrupt = NULL;
+  bsfit_skin_opts_init(&o);
+  for (pass = 0; pass < 2; pass++) { /* exact, then within a tolerance (the cubics' search) */
+    o.tol = pass ? 0.5 : 0.0;
+    for (n = 1;; n++) {
+      bsfit_err e;
+      memset(&cnt, 0, sizeof cnt);
+      cnt.fail_at = n;
+      a.fn = counting_alloc;
+      a.ud = &cnt;
+      a.interrupt = NULL;
+      bsfit_surface_init(&S);
+      e = bsfit_surface_skin(ptr, 4, &o, &S, &rep, &a, &st);
+      bsfit_surface_free(&S);
+      assert_int_equal(cnt.live, 0);
+      if (e == BSFIT_OK) break;
+      assert_int_equal(e, BSFIT_ENOMEM);
+    }
+    assert_true(n > 10);
+    assert_true(pass == 0 || rep.count > 0); /* the search did run */
+    a.fn = NULL;
+    a.interrupt = &stop;
     bsfit_surface_init(&S);
-    e = bsfit_surface_skin(ptr, 4, NULL, &S, NULL, &a, &st);
-    bsfit_surface_free(&S);
-    assert_int_equal(cnt.live, 0);
-    if (e == BSFIT_OK) break;
-    assert_int_equal(e, BSFIT_ENOMEM);
+    assert_int_equal(bsfit_surface_skin(ptr, 4, &o, &S, NULL, &a, &st), BSFIT_EINTR);
+    assert_null(S.ctrl);
   }
-  assert_true(n > 10);
-  a.fn = NULL;
-  a.interrupt = &stop;
-  bsfit_surface_init(&S);
-  assert_int_equal(bsfit_surface_skin(ptr, 4, NULL, &S, NULL, &a, &st), BSFIT_EINTR);
-  assert_null(S.ctrl);
   for (k = 0; k < 4; k++) bsfit_curve_free(&C[k]);
 }
 
@@ -462,6 +578,7 @@ int main(void) {
     cmocka_unit_test(test_periodic_u_json),
     cmocka_unit_test(test_surface_of_revolution),
     cmocka_unit_test(test_twisted_inputs),
+    cmocka_unit_test(test_tolerance),
     cmocka_unit_test(test_errors),
     cmocka_unit_test(test_enomem_and_interrupt),
   };

@@ -95,6 +95,20 @@ T.test("skin: twisted inputs are untwisted (align) or left as given (align = fal
   for k = 1, 12 do T.eq(rep.reversed[k], k % 3 == 0) end
 end)
 
+T.test("skin: tol gives uniform cubics within it, and says so in the report", function()
+  -- ellipses through 48 points each (48 knots per section, starts rotated): a 1e-3 skin
+  local secs = {}
+  for k = 1, 6 do secs[k] = section(k, 4 + 0.3 * k, 2.5, 48, 0.7 * k) end
+  local E, erep = bs.surface.skin(secs)
+  local L, lrep = bs.surface.skin(secs, { tol = 1e-3 })
+  T.ok(erep.count == nil and lrep.count > 0, "count only with tol")
+  T.ok(lrep.max_deviation <= 1e-3, "max_deviation " .. lrep.max_deviation)
+  T.eq((L:count()), lrep.count + 3)
+  T.ok((L:count()) < (E:count()), "lighter")
+  local worst = section_error(L, lrep, secs)
+  T.ok(worst <= 1e-3, "every section within tol: " .. worst)
+end)
+
 T.test("skin: misuse raises naming the section from 1; coincident sections fail", function()
   local a, b = section(0, 2, 2, 8), section(1, 2, 2, 8)
   local open = bs.curve.new { degree = 2, control_points = { { 0, 0, 0 }, { 1, 0, 0 }, { 1, 1, 0 } } }
@@ -112,6 +126,10 @@ T.test("skin: misuse raises naming the section from 1; coincident sections fail"
   T.raises("bad argument #2 to 'skin' (field 'degree_v' must be in 1..1 (2 sections))",
     function() bs.surface.skin({ a, b }, { degree_v = 2 }) end)
   T.raises("bad argument #2 to 'skin' (unknown option 'degree')", function() bs.surface.skin({ a, b }, { degree = 2 }) end)
+  T.raises("bad argument #2 to 'skin' (field 'tol' must be 0 (exact) or positive)",
+    function() bs.surface.skin({ a, b }, { tol = -1 }) end)
+  T.raises("bad argument #2 to 'skin' (field 'tol' must be 0 (exact) or positive)",
+    function() bs.surface.skin({ a, b }, { tol = 0 / 0 }) end)
   local msg = T.fails("EDEGENERATE", bs.surface.skin, { a, b, b })
   T.eq(msg, "sections 2 and 3 coincide")
 end)

@@ -136,5 +136,31 @@ check "--cell on a mesh: exit 2 with a reason" grep -q "cell and target (reducti
 "$BSFIT" cloud --help > "$TMP/help"
 check "--help prints the usage" grep -q 'usage: bsfit cloud' "$TMP/help"
 
+# the surface's preview: written, well-formed XML, one path per iso-line (24 around the
+# surface, 12 along it) and one per section; rendered by rsvg-convert
+"$BSFIT" cloud "$TMP/vase_le.ply" -o "$TMP/out_pic" --slices 7 -q 2> "$TMP/err_pic"
+check "surface.svg written" test -s "$TMP/out_pic/surface.svg"
+check "surface.svg: XML with 36 iso-lines and 7 sections" python3 - "$TMP/out_pic/surface.svg" <<'PY'
+import sys, xml.etree.ElementTree as ET
+root = ET.parse(sys.argv[1]).getroot()
+paths = [e for e in root.iter("{http://www.w3.org/2000/svg}path")]
+count = lambda c: sum(1 for e in paths if e.get("class") == c)
+hidden = count("iso-hidden")
+ok = count("iso") == 36 and count("section") == 7 and 0 < hidden <= 36
+print("# paths: iso %d, iso-hidden %d, section %d" % (count("iso"), hidden, count("section")))
+sys.exit(0 if ok else 1)
+PY
+check "surface.svg renders" rsvg-convert "$TMP/out_pic/surface.svg" -o "$TMP/out_pic/surface.png"
+check "summary.json: the surface's net" grep -q '"control_points_u":' "$TMP/out_pic/summary.json"
+"$BSFIT" cloud "$TMP/vase_le.ply" -o "$TMP/out_exact" --slices 7 --skin-tol 0 -q 2> /dev/null
+check "--skin-tol 0: the exact surface, heavier" python3 - "$TMP/out_pic/summary.json" "$TMP/out_exact/summary.json" <<'PY'
+import json, sys
+light, exact = (json.load(open(p))["surface_info"] for p in sys.argv[1:3])
+print("# columns: light %d (tol %.3g), exact %d" % (light["control_points_u"], light["tol"], exact["control_points_u"]))
+sys.exit(0 if exact["exact"] and not light["exact"] and light["control_points_u"] * 5 < exact["control_points_u"] else 1)
+PY
+"$BSFIT" cloud "$TMP/vase_le.ply" -o "$TMP/out_bad" --slices 7 --skin-tol -1 -q 2> "$TMP/err_tol"
+check "--skin-tol -1: exit 2" test $? -eq 2
+
 echo "$pass passed, $fail failed"
 test "$fail" -eq 0

@@ -6,6 +6,7 @@
 -- 2 on a usage or file error.
 
 local pipeline = require "bsfit.scan.pipeline"
+local options = require "bsfit.cli_options"
 
 local M = {}
 
@@ -27,6 +28,9 @@ usage: bsfit cloud IN.(ply|stl|obj|xyz|csv) -o OUTDIR [options]
   --samples K      curve samples written to <name>.csv (default 1000)
   --format LIST    any of json,svg,csv,iges for each loop (default json,svg,csv)
   -j N             process N slices at a time (default 1)
+  --skin-tol T     the surface within T of each section, through light uniform cubics
+                   (default auto: a mesh's tessellation error, a cloud's noise);
+                   0: through the sections exactly
   --no-surface     do not skin the sections into a surface (by default, when every
                    slice gives one closed loop: surface.json, surface.iges, surface.obj)
   -q               no summary line
@@ -35,29 +39,7 @@ usage: bsfit cloud IN.(ply|stl|obj|xyz|csv) -o OUTDIR [options]
 
 local function warn(fmt, ...) io.stderr:write("bsfit cloud: ", fmt:format(...), "\n") end
 
-local function number(s, what, min)
-  local x = tonumber(s)
-  if not x or x ~= x or x == math.huge or x == -math.huge or (min and not (x > min)) then
-    local bound = min and (" > " .. min) or ""
-    error(("%s must be a number%s, got '%s'"):format(what, bound, tostring(s)), 0)
-  end
-  return x
-end
-
-local function count(s, what)
-  local n = math.tointeger(tonumber(s))
-  if not n or n < 1 then
-    error(("%s must be a positive integer, got '%s'"):format(what, tostring(s)), 0)
-  end
-  return n
-end
-
-local function list(s, what)
-  local t = {}
-  for f in tostring(s):gmatch("[^,]+") do t[#t + 1] = number(f, what) end
-  if #t == 0 then error(what .. " needs numbers separated by commas", 0) end
-  return t
-end
+local number, count, list = options.number, options.positive_integer, options.list
 
 local function axis(s)
   if s == "x" or s == "y" or s == "z" then return s end
@@ -66,16 +48,7 @@ local function axis(s)
   return t
 end
 
-local function formats(s)
-  local known, f = { json = true, svg = true, csv = true, iges = true }, {}
-  for name in tostring(s):gmatch("[^,]+") do
-    if not known[name] then
-      error(("unknown format '%s' (json, svg, csv, iges)"):format(name), 0)
-    end
-    f[name] = true
-  end
-  return f
-end
+local function formats(s) return options.formats(s, { "json", "svg", "csv", "iges" }) end
 
 local flags = {
   ["-o"] = function(o, v) o.outdir = v end,
@@ -99,31 +72,27 @@ local flags = {
   ["--samples"] = function(o, v) o.samples = count(v, "--samples") end,
   ["--format"] = function(o, v) o.formats = formats(v) end,
   ["-j"] = function(o, v) o.jobs = count(v, "-j") end,
+  ["--skin-tol"] = function(o, v)
+    o.skin_tol = v == "auto" and "auto" or (tonumber(v) == 0 and 0 or number(v, "--skin-tol", 0))
+  end,
+}
+
+local switches = {
+  ["-h"] = function(o) o.help = true end,
+  ["--help"] = function(o) o.help = true end,
+  ["-q"] = function(o) o.quiet = true end,
+  ["--no-surface"] = function(o) o.surface = false end,
 }
 
 -- The options and the input file; raises with a usage message.
 function M.parse(args)
-  local o, input, help, quiet = { outdir = "bsfit-cloud" }, nil, false, false
-  local i = 1
-  while i <= #args do
-    local a = args[i]
-    local name, value = a:match("^(%-%-[%w-]+)=(.*)$")
-    name = name or a
-    if flags[name] then
-      if value == nil then
-        i = i + 1
-        value = args[i]
-        if value == nil then error("option " .. name .. " needs a value", 0) end
-      end
-      flags[name](o, value)
-    elseif a == "-h" or a == "--help" then help = true
-    elseif a == "-q" then quiet = true
-    elseif a == "--no-surface" then o.surface = false
-    elseif a:sub(1, 1) == "-" then error("unknown option '" .. a .. "'", 0)
-    elseif input then error("one input file only (got '" .. input .. "' and '" .. a .. "')", 0)
-    else input = a end
-    i = i + 1
-  end
+  local o, input = { outdir = "bsfit-cloud" }, nil
+  options.parse(args, o, flags, switches, function(_, a)
+    if input then error("one input file only (got '" .. input .. "' and '" .. a .. "')", 0) end
+    input = a
+  end)
+  local help, quiet = o.help, o.quiet
+  o.help, o.quiet = nil, nil
   if help then return o, input, true, quiet end
   if not input then error("no input file", 0) end
   local n = (o.slices and 1 or 0) + (o.spacing and 1 or 0) + (o.at and 1 or 0)

@@ -15,6 +15,7 @@ local report = require "bsfit.report"
 local svg = require "bsfit.svg"
 local progress = require "bsfit.progress"
 local section_output = require "bsfit.section_output"
+local options = require "bsfit.cli_options"
 
 local M = {}
 
@@ -56,23 +57,11 @@ end
 -- Arguments
 -- =======================================================================
 
-local function positive_integer(s, what)
-  local n = math.tointeger(tonumber(s))
-  if not n or n < 1 then error(("%s must be a positive integer, got '%s'"):format(what, tostring(s)), 0) end
-  return n
-end
+local positive_integer = options.positive_integer
 
-local formats_known = { json = true, svg = true, csv = true, iges = true, step = true, dxf = true }
+local formats_known = { "json", "svg", "csv", "iges", "step", "dxf" }
 
-local function parse_formats(s)
-  local f = {}
-  for name in tostring(s):gmatch("[^,]+") do
-    if not formats_known[name] then error(("unknown format '%s' (json, svg, csv, iges, step, dxf)"):format(name), 0) end
-    f[name] = true
-  end
-  if next(f) == nil then error("--format needs at least one of json, svg, csv, iges", 0) end
-  return f
-end
+local function parse_formats(s) return options.formats(s, formats_known) end
 
 -- Options of one option word: a function(o, value) and whether it takes a value.
 local flags = {
@@ -126,27 +115,7 @@ local switches = {
 function M.parse(args)
   local o = { inputs = {}, outdir = "bsfit-out", strategy = "auto", degree = 3,
               samples = 1000, formats = parse_formats("json,svg,csv"), jobs = 1 }
-  local i = 1
-  while i <= #args do
-    local a = args[i]
-    local name, value = a:match("^(%-%-[%w-]+)=(.*)$")
-    name = name or a
-    if flags[name] then
-      if value == nil then
-        i = i + 1
-        value = args[i]
-        if value == nil then error("option " .. name .. " needs a value", 0) end
-      end
-      flags[name](o, value)
-    elseif switches[a] then
-      switches[a](o)
-    elseif a:sub(1, 1) == "-" and a ~= "-" then
-      error("unknown option '" .. a .. "'", 0)
-    else
-      o.inputs[#o.inputs + 1] = a
-    end
-    i = i + 1
-  end
+  options.parse(args, o, flags, switches, function(_, a) o.inputs[#o.inputs + 1] = a end)
   if o.tol and o.strategy == "carvalho" then error("--tol needs --strategy auto or periodic (or a FILE.lua)", 0) end
   if o.open and o.strategy == "carvalho" then error("--open needs --strategy auto or periodic (or a FILE.lua)", 0) end
   if o.open and o.closed then error("--open and --closed contradict each other", 0) end

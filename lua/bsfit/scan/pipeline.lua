@@ -30,7 +30,7 @@ M.settings = {
   format = "auto", axis = "z", slices = false, spacing = false, at = false, thickness = false,
   tol = false, cell = false, target = false, order_method = "auto", strategy = "auto",
   degree = 3, count = false, samples = 1000, formats = false, outdir = false, jobs = 1,
-  surface = true,
+  surface = true, skin_tol = "auto",
 }
 
 local clock = (bs.parallel and bs.parallel.clock) or os.clock
@@ -240,7 +240,8 @@ local function process(slices, ctx)
 end
 
 -- Runs the whole pipeline on the scan file at input. Returns the result: rows (the
--- summary), curves ({name, curve (2D), slice}), curves3d, slices, scan, timing.
+-- summary), curves ({name, curve (2D), slice}), curves3d, slices, scan, timing (per slice),
+-- ms (read to the last slice) and step_ms (each result step).
 function M.run(input, opts)
   local ctx = M.context(opts)
   local t0 = clock()
@@ -259,7 +260,12 @@ function M.run(input, opts)
   local result = process(slices, ctx)
   result.input, result.scan, result.slices = input, scan, slices
   result.ms = (clock() - t0) * 1000
-  for _, step in ipairs(M.result_steps) do ctx[step](result, ctx) end
+  result.step_ms = {} -- milliseconds of each result step (skin, write), for benchmarks
+  for _, step in ipairs(M.result_steps) do
+    local t1 = clock()
+    ctx[step](result, ctx)
+    result.step_ms[step] = (clock() - t1) * 1000
+  end
   return result
 end
 

@@ -130,9 +130,52 @@ local function skinnable(result)
   return sections
 end
 
--- Interpolates one surface through the fitted sections (bs.surface.skin): periodic
--- around them, through each exactly. Sets result.surface (and result.skin, the report)
--- or result.surface_message saying why there is none.
+-- The sagittas (L_a + L_b) θ / 8 at the vertices of a closed polyline, into s: a chord of
+-- length L across an arc turning by θ is L θ / 8 from it. On the loop of a plane cut
+-- through a mesh the turns gather at the facets' edges (the cut through a facet's own
+-- diagonal barely turns), so the chord over both neighbouring segments is the facet's.
+local function polyline_sagitta(P, s)
+  local m = #P
+  for i = 1, m do
+    local x0, y0 = P:get((i - 2) % m + 1)
+    local x1, y1 = P:get(i)
+    local x2, y2 = P:get(i % m + 1)
+    local ax, ay, bx, by = x1 - x0, y1 - y0, x2 - x1, y2 - y1
+    local la, lb = math.sqrt(ax * ax + ay * ay), math.sqrt(bx * bx + by * by)
+    if la > 0 and lb > 0 then
+      s[#s + 1] = (la + lb) * math.abs(math.atan(ax * by - ay * bx, ax * bx + ay * by)) / 8
+    end
+  end
+end
+
+-- The distance the surface may keep from the sections (ctx.skin_tol: a number; 0 or false:
+-- through them exactly; "auto", the default): what the scan itself is sure of. A mesh:
+-- its tessellation error, the upper quartile of its loops' vertex sagittas (the loops are
+-- exact cuts of flat facets, and auto follows them facet by facet: hundreds of C0 knots
+-- per section; the quartile passes over the few real corners and the facets' diagonals).
+-- A cloud: its noise, the median RMS of the section fits.
+function M.skin_tolerance(result, ctx)
+  local t = ctx.skin_tol
+  if t == nil or t == "auto" then
+    local s = {}
+    if result.scan and result.scan.triangles then
+      for _, sl in ipairs(result.slices or {}) do
+        for _, P in ipairs(sl.loops or {}) do polyline_sagitta(P, s) end
+      end
+    else
+      for _, r in ipairs(result.rows) do if r.rms then s[#s + 1] = r.rms end end
+    end
+    table.sort(s)
+    local mesh = result.scan and result.scan.triangles
+    t = #s > 0 and s[mesh and (3 * #s + 3) // 4 or (#s + 1) // 2] or 0
+  end
+  return t or 0
+end
+
+-- Skins the fitted sections into one surface (bs.surface.skin): periodic around them,
+-- within M.skin_tolerance of each (through light uniform cubics; exactly when that is 0 or
+-- no cubic count keeps it). Sets result.surface (and result.skin, the report, with
+-- skin.tol) or result.surface_message saying why there is none.
 function M.skin(result, ctx)
   if ctx.surface == false then return end
   local sections, why = skinnable(result)
@@ -140,13 +183,15 @@ function M.skin(result, ctx)
     result.surface_message = why
     return
   end
-  -- a section the skinning cannot take (e.g. a corner at its seam: see docs/scan.md) is
-  -- reported, not raised: the sections themselves are still written
-  local ok, S, rep = pcall(bs.surface.skin, sections)
+  local tol = M.skin_tolerance(result, ctx)
+  -- a section the skinning cannot take is reported, not raised: the sections themselves
+  -- are still written
+  local ok, S, rep = pcall(bs.surface.skin, sections, { tol = tol })
   if not ok or not S then
     result.surface_message = "skinning failed: " .. tostring(ok and rep or S):gsub("^.-%((.*)%)$", "%1")
     return
   end
+  rep.tol, rep.sections = tol, sections
   result.surface, result.skin = S, rep
 end
 
