@@ -261,9 +261,6 @@ static bsfit_err check_surface(const bsfit_surface *s, bsfit_status *st) {
   if (e != BSFIT_OK) return e;
   if (s->weights != NULL)
     return bsfit__fail(st, BSFIT_EINVAL, "rational surfaces cannot be box-filtered");
-  /* filtered as an open surface, the expanded form would no longer close at the seam */
-  if (s->periodic_u)
-    return bsfit__fail(st, BSFIT_EINVAL, "surfaces closed around u cannot be box-filtered");
   if (s->degree_u + 1 > BSFIT_MAX_DEGREE || s->degree_v + 1 > BSFIT_MAX_DEGREE)
     return bsfit__fail(st, BSFIT_EDEGREE, "filtering raises a degree above %d",
                        BSFIT_MAX_DEGREE);
@@ -274,7 +271,13 @@ bsfit_err bsfit__check_box_surface(const bsfit_surface *s, const bsfit__pass *au
                                    const bsfit__pass *av, bsfit_status *st) {
   double ua, ub, va, vb;
   bsfit_err e = check_surface(s, st);
+  size_t nper = s->nu - (size_t)s->degree_u; /* closed around u: distinct rows */
   if (e != BSFIT_OK) return e;
+  if (s->periodic_u && nper < (size_t)(s->degree_u + au->order) + 1)
+    return bsfit__fail(st, BSFIT_ENOTPERIODIC,
+                       "filtering raises the degree in u to %d, and a surface closed around u "
+                       "of that degree needs %d distinct rows; this one has %zu",
+                       s->degree_u + au->order, s->degree_u + au->order + 1, nper);
   if (au->exact) {
     bsfit_surface_domain(s, &ua, &ub, &va, &vb);
     e = check_delta(au->delta, ub - ua, "delta_u", st);

@@ -144,9 +144,11 @@ bsfit_err bsfit__filter_surface(const bsfit_surface *s, const bsfit__pass *au,
   bsfit_allocator a = s->alloc;
   bsfit__fview v = bsfit__surface_view_u(s);
   bsfit__fspline fu;
-  bsfit_err e = passes(&v, au, 0, &a, &fu, st);
+  /* a surface closed around u: its rows are the points of one closed curve, filtered as
+  ** closed curves are (unwrapped), so the result closes at the seam too */
+  bsfit_err e = passes(&v, au, s->periodic_u, &a, &fu, st);
   if (e != BSFIT_OK) return e;
-  e = bsfit__surface_along_v(s, &fu, passes_v, av, 0, &a, out, st);
+  e = bsfit__surface_along_v(s, &fu, passes_v, av, s->periodic_u, &a, out, st);
   bsfit__fspline_free(&a, &fu);
   return e == BSFIT_OK ? bsfit__ok(st) : e;
 }

@@ -102,7 +102,8 @@ static bsfit_err project_surface(const sctx *x, const bsfit_surface *F, bsfit_su
   if (e == BSFIT_OK)
     e = bsfit__knot_breaks(s->knots_v, s->nv + (size_t)s->degree_v + 1, s->degree_v, x->va,
                            x->vb, x->q, NULL, 0, x->al, &bv, st);
-  if (e == BSFIT_OK) e = bsfit__project_surface(F, x->q, x->q, &bu, &bv, 0, x->al, out, st);
+  if (e == BSFIT_OK)
+    e = bsfit__project_surface(F, x->q, x->q, &bu, &bv, s->periodic_u, x->al, out, st);
   bsfit__breaks_free(x->al, &bu);
   bsfit__breaks_free(x->al, &bv);
   return e;
@@ -199,8 +200,6 @@ static bsfit_err check_smooth_surface(const bsfit_surface *s, const bsfit_smooth
   if (e != BSFIT_OK) return e;
   if (s->weights != NULL)
     return bsfit__fail(st, BSFIT_EINVAL, "rational surfaces cannot be filtered");
-  if (s->periodic_u) /* the kernel filters unwrap closed curves, not yet closed surfaces */
-    return bsfit__fail(st, BSFIT_EINVAL, "surfaces closed around u cannot be smoothed");
   if (q < 1 || q > BSFIT__BERN_MAX)
     return bsfit__fail(st, BSFIT_EDEGREE, "degree = %d must be in 1..%d", q, BSFIT__BERN_MAX);
   if (s->degree_u > BSFIT__BERN_MAX || s->degree_v > BSFIT__BERN_MAX)
