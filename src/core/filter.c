@@ -271,8 +271,9 @@ bsfit_err bsfit__check_box_surface(const bsfit_surface *s, const bsfit__pass *au
                                    const bsfit__pass *av, bsfit_status *st) {
   double ua, ub, va, vb;
   bsfit_err e = check_surface(s, st);
-  size_t nper = s->nu - (size_t)s->degree_u; /* closed around u: distinct rows */
+  size_t nper;
   if (e != BSFIT_OK) return e;
+  nper = s->nu - (size_t)s->degree_u; /* closed around u: its distinct rows */
   if (s->periodic_u && nper < (size_t)(s->degree_u + au->order) + 1)
     return bsfit__fail(st, BSFIT_ENOTPERIODIC,
                        "filtering raises the degree in u to %d, and a surface closed around u "
