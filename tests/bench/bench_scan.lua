@@ -82,15 +82,15 @@ t = best(3, function() slices = bs.scan.slice(scan, { axis = "z", slices = 100 }
 local loops = 0
 for _, s in ipairs(slices) do loops = loops + #s.loops end
 print(("mesh %d triangles, 100 slices: %.3f s (%d loops; target < 1 s)"):format(nt, t, loops))
--- the whole pipeline on the mesh: its loops are 2000 points each (SKIP_MESH_PIPELINE=1 skips
--- it: auto takes 13 s on some of these loops, see docs/scan.md)
-if os.getenv("SKIP_MESH_PIPELINE") ~= "1" then
-  t = best(1, function()
-    res = pipeline.run(mesh, { slices = 100, outdir = DIR .. "/mesh_out", jobs = jobs })
-  end)
-  print(("mesh, 100 slices, whole pipeline -j %d: %.3f s (skin %.3f s, files %.3f s)")
-    :format(jobs, t, res.step_ms.skin / 1000, res.step_ms.write / 1000))
-end
+-- the whole pipeline on the mesh: its loops are 2000 points each (auto took 13 s on some of
+-- them before arc length stopped over-refining tiny pieces; tests/bench/bench_auto.lua)
+t = best(1, function()
+  res = pipeline.run(mesh, { slices = 100, outdir = DIR .. "/mesh_out", jobs = jobs })
+end)
+local info = require("bsfit.scan.output").surface_info(res) or {}
+print(("mesh, 100 slices, whole pipeline -j %d: %.3f s (skin %.3f s, files %.3f s; net %s x %s%s)")
+  :format(jobs, t, res.step_ms.skin / 1000, res.step_ms.write / 1000, info.control_points_u or "-",
+          info.control_points_v or "-", info.exact and ", exact" or ""))
 
 -- the same cloud as text: XYZ and ASCII PLY
 do
