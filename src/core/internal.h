@@ -7,6 +7,8 @@
 
 #include "../bsfit.h"
 
+#include <float.h>
+#include <math.h>
 #include <stddef.h>
 
 #if defined(__GNUC__)
@@ -38,8 +40,7 @@ static inline int bsfit__interrupted(const bsfit_allocator *a) {
 ** relative slack of the period. Never 1e-12 of the magnitude: knots near 4e11 spaced by 3
 ** would then pass with spans 0.9 apart. */
 static inline double bsfit__periodic_span_tol(double a, double b) {
-  double ulps = 64.0 * 2.220446049250313e-16; /* 64 DBL_EPSILON */
-  return ulps * ((a < 0 ? -a : a) + (b < 0 ? -b : b)) + 1e-12 * (b - a);
+  return 64.0 * DBL_EPSILON * (fabs(a) + fabs(b)) + 1e-12 * (b - a);
 }
 
 /* n*size without overflow; 0 on overflow (callers treat 0 as an error). */
