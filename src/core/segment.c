@@ -533,15 +533,123 @@ static double cubic_rss(const section *s, size_t first, size_t n) {
   return rss;
 }
 
+/* residual sum of squares (true distances) of a parametric cubic (x(t), y(t)) over the
+** run: t by chord length, one least-squares fit, each sample's foot point by Newton, a
+** second fit at those feet. A smooth bend that turns too far for a cubic graph over the
+** chord (the end of an ellipse, sampled sparsely) is one for it. HUGE_VAL when it cannot
+** be fitted. */
+#define EVIDENCE_REACH 8 /* samples on each side of a join (fewer on arcs: arc_reach) */
+#define PCUBIC_MAX (2 * EVIDENCE_REACH)
+static void pcubic_fit(const section *s, size_t first, size_t n, const double *t, double cx[4],
+                       double cy[4], int *ok) {
+  double A[BSFIT__SMALL][BSFIT__SMALL] = {{0}}, L[BSFIT__SMALL][BSFIT__SMALL];
+  size_t k;
+  int i, j;
+  for (i = 0; i < 4; i++) cx[i] = cy[i] = 0;
+  for (k = 0; k < n; k++) {
+    const double *q = sample(s, first + k);
+    double pw[4] = {1, t[k], t[k] * t[k], t[k] * t[k] * t[k]};
+    for (i = 0; i < 4; i++) {
+      cx[i] += pw[i] * q[0], cy[i] += pw[i] * q[1];
+      for (j = 0; j < 4; j++) A[i][j] += pw[i] * pw[j];
+    }
+  }
+  memcpy(L, A, sizeof L);
+  *ok = bsfit__small_cholesky(4, L);
+  if (!*ok) return;
+  bsfit__small_chol_solve(4, L, cx);
+  bsfit__small_chol_solve(4, L, cy);
+}
+
+/* the foot parameter of q on the cubic from t0 (a few Newton steps), its squared distance */
+static double pcubic_foot(const double cx[4], const double cy[4], const double *q, double *t0) {
+  double t = *t0, ex = 0, ey = 0;
+  int it;
+  for (it = 0; it < 6; it++) {
+    double x = cx[0] + t * (cx[1] + t * (cx[2] + t * cx[3]));
+    double y = cy[0] + t * (cy[1] + t * (cy[2] + t * cy[3]));
+    double dx = cx[1] + t * (2 * cx[2] + 3 * t * cx[3]), dy = cy[1] + t * (2 * cy[2] + 3 * t * cy[3]);
+    double ddx = 2 * cx[2] + 6 * t * cx[3], ddy = 2 * cy[2] + 6 * t * cy[3];
+    double g, h;
+    ex = x - q[0], ey = y - q[1];
+    g = ex * dx + ey * dy;
+    h = dx * dx + dy * dy + ex * ddx + ey * ddy;
+    if (!(h > 0)) break;
+    t -= g / h;
+  }
+  {
+    double x = cx[0] + t * (cx[1] + t * (cx[2] + t * cx[3]));
+    double y = cy[0] + t * (cy[1] + t * (cy[2] + t * cy[3]));
+    ex = x - q[0], ey = y - q[1];
+  }
+  *t0 = t;
+  return ex * ex + ey * ey;
+}
+
+/* A parametric cubic can stop and turn (a cusp): a corner in disguise. It stands for a
+** smooth curve only when its speed over [-1, 1] stays within a factor PCUBIC_SPEED (the
+** samples, by chord length, move at an even pace along a smooth bend). */
+#define PCUBIC_SPEED 3.0
+static int pcubic_regular(const double cx[4], const double cy[4]) {
+  double lo = HUGE_VAL, hi = 0;
+  int k;
+  for (k = 0; k <= 16; k++) {
+    double t = -1 + k / 8.0, dx = cx[1] + t * (2 * cx[2] + 3 * t * cx[3]);
+    double dy = cy[1] + t * (2 * cy[2] + 3 * t * cy[3]), v = hypot(dx, dy);
+    lo = fmin(lo, v), hi = fmax(hi, v);
+  }
+  return hi > 0 && hi <= PCUBIC_SPEED * lo;
+}
+
+static double pcubic_rss(const section *s, size_t first, size_t n) {
+  double t[PCUBIC_MAX], cx[4], cy[4], len = 0, rss = 0;
+  size_t k;
+  int ok, round;
+  if (n < 10 || n > PCUBIC_MAX) return HUGE_VAL;
+  t[0] = 0;
+  for (k = 1; k < n; k++) {
+    const double *a = sample(s, first + k - 1), *b = sample(s, first + k);
+    len += hypot(b[0] - a[0], b[1] - a[1]);
+    t[k] = len;
+  }
+  if (!(len > 0)) return HUGE_VAL;
+  for (k = 0; k < n; k++) t[k] = 2 * t[k] / len - 1;
+  for (round = 0; round < 2; round++) {
+    pcubic_fit(s, first, n, t, cx, cy, &ok);
+    if (!ok) return HUGE_VAL;
+    rss = 0;
+    for (k = 0; k < n; k++) rss += pcubic_foot(cx, cy, sample(s, first + k), &t[k]);
+  }
+  return pcubic_regular(cx, cy) ? rss : HUGE_VAL;
+}
+
 /* How much worse one smooth curve explains the samples of A and B next to their corner
 ** (up to EVIDENCE_REACH on each side: a smooth contour is smooth locally, while two
 ** long pieces of it together may turn too far for one cubic) than their two models, in
 ** units of sigma^2 = (tol / tol_sigma)^2. */
-#define EVIDENCE_REACH 8
+#define EVIDENCE_TURN (PI / 4)
+
+/* How many samples of an arc, counted from its sample `from` (its first when step is +1,
+** its last when -1), lie within EVIDENCE_TURN of that sample around its centre: an arc's
+** tangent turns as it goes, and two half ellipses meet at the ends of the major axis in
+** what one cubic across 8 + 8 sparse samples (two thirds of the ellipse) cannot follow. */
+static size_t arc_reach(const section *s, const bsfit_piece *p, const model *md, size_t n, int end) {
+  const double *c = md->circle.c, *q0 = sample(s, end ? p->first + p->count - 1 : p->first);
+  size_t k;
+  if (md->kind != ARC) return n;
+  for (k = 1; k < n; k++) {
+    const double *q = sample(s, end ? p->first + p->count - 1 - k : p->first + k);
+    double ax = q0[0] - c[0], ay = q0[1] - c[1], bx = q[0] - c[0], by = q[1] - c[1];
+    if (atan2(fabs(ax * by - ay * bx), ax * bx + ay * by) > EVIDENCE_TURN) break;
+  }
+  return k < 3 && n >= 3 ? 3 : k;
+}
+
 static double join_evidence(const section *s, const bsfit_piece *A, const model *ma,
                             const bsfit_piece *B, const model *mb, double sigma) {
-  size_t na = A->count < EVIDENCE_REACH ? A->count : EVIDENCE_REACH;
-  size_t nb = B->count < EVIDENCE_REACH ? B->count : EVIDENCE_REACH, k, first, n;
+  size_t na = arc_reach(s, A, ma, A->count < EVIDENCE_REACH ? A->count : EVIDENCE_REACH, 1);
+  size_t nb = arc_reach(s, B, mb, B->count < EVIDENCE_REACH ? B->count : EVIDENCE_REACH, 0), k,
+         first, n;
   int shared = B->first == (A->first + A->count - 1) % s->m;
   double two = 0, one, rms;
   model md;
@@ -553,7 +661,7 @@ static double join_evidence(const section *s, const bsfit_piece *A, const model 
                   pow(model_dist(mb, sample(s, B->first)), 2));
   n = na + nb - (size_t)shared;
   if (n > s->m) n = s->m;
-  one = cubic_rss(s, first, n);
+  one = fmin(cubic_rss(s, first, n), pcubic_rss(s, first, n));
   if (fit_model(s, ARC, first, n, &md, &rms) < HUGE_VAL && rms * rms * (double)n < one)
     one = rms * rms * (double)n;
   return (one - two) / (sigma * sigma);
@@ -874,15 +982,42 @@ static void refit_fillet(const section *s, bsfit_piece *A, const model *ma, bsfi
   F->rms = rms;
 }
 
+/* Samples of line A past its tangent point with fillet F (their feet beyond A's end along
+** A), and of B before it, lie on the fillet: a line that held them (they were within its
+** tolerance) bends the fillet's radius by percents. They go to F; returns how many moved. */
+static size_t claim_for_fillet(const section *s, bsfit_piece *A, const model *ma, bsfit_piece *F,
+                               bsfit_piece *B, const model *mb) {
+  size_t moved = 0;
+  while (A->count > s->min_len[LINE]) {
+    const double *q = sample(s, A->first + A->count - 1);
+    if ((q[0] - A->end[0]) * ma->line.d[0] + (q[1] - A->end[1]) * ma->line.d[1] <= 0) break;
+    A->count--, F->first = (F->first + s->m - 1) % s->m, F->count++, moved++;
+  }
+  while (B->count > s->min_len[LINE]) {
+    const double *q = sample(s, B->first);
+    if ((q[0] - B->start[0]) * mb->line.d[0] + (q[1] - B->start[1]) * mb->line.d[1] >= 0) break;
+    B->first = (B->first + 1) % s->m, B->count--, F->count++, moved++;
+  }
+  return moved;
+}
+
 static void refit_fillets(const section *s, bsfit_piece *p, model *md, size_t np) {
   size_t i;
-  for (i = 0; i < np; i++) {
-    size_t ia = (i + np - 1) % np, ib = (i + 1) % np;
-    if (p[i].kind != ARC || np < 3 || p[ia].kind != LINE || p[ib].kind != LINE) continue;
-    if (!s->closed && (i == 0 || i + 1 == np)) continue;
-    if (p[i].join != BSFIT_JOIN_TANGENT || p[ib].join != BSFIT_JOIN_TANGENT) continue;
-    refit_fillet(s, &p[ia], &md[ia], &p[i], &md[i], &p[ib], &md[ib]);
-  }
+  int pass;
+  for (pass = 0; pass < 2; pass++)
+    for (i = 0; i < np; i++) {
+      size_t ia = (i + np - 1) % np, ib = (i + 1) % np;
+      if (p[i].kind != ARC || np < 3 || p[ia].kind != LINE || p[ib].kind != LINE) continue;
+      if (!s->closed && (i == 0 || i + 1 == np)) continue;
+      if (p[i].join != BSFIT_JOIN_TANGENT || p[ib].join != BSFIT_JOIN_TANGENT) continue;
+      refit_fillet(s, &p[ia], &md[ia], &p[i], &md[i], &p[ib], &md[ib]);
+      /* the second pass places every tangent point on the lines as they end up */
+      if (pass == 0 && s->noisy && claim_for_fillet(s, &p[ia], &md[ia], &p[i], &p[ib], &md[ib])) {
+        refit(s, &p[ia], &md[ia]);
+        refit(s, &p[ib], &md[ib]);
+        refit_fillet(s, &p[ia], &md[ia], &p[i], &md[i], &p[ib], &md[ib]);
+      }
+    }
 }
 
 /* Models, ends and sweeps of the np pieces of the cover (p has room for 2 np). */

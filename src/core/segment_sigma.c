@@ -71,6 +71,8 @@ static level level_of(const double *pts, size_t m, const bsfit_piece *p, size_t 
 ** the match on sparse sections (a side of 3 samples has one degree of freedom: its
 ** residual is far from steady), where the level above already lets a short arc take a
 ** corner. */
+#define LEVEL_STEP 1.2115276586285884 /* 10^(1/12) */
+
 static bsfit_err search_levels(const double *pts, size_t m, double s0, double max_sigma,
                                bsfit_segment_opts *o, bsfit_piece *p, double *d, double *sigma,
                                const bsfit_allocator *a, bsfit_status *st) {
@@ -78,8 +80,7 @@ static bsfit_err search_levels(const double *pts, size_t m, double s0, double ma
   int round;
   size_t np = 0;
   bsfit_err e;
-  for (round = 0; round < 64 && s0 < 0.05 * size && s0 <= max_sigma;
-       round++, s0 *= 1.7782794100389228) {
+  for (round = 0; round < 64 && s0 < 0.05 * size && s0 <= max_sigma; round++) {
     level l;
     o->sigma = s0;
     if ((round & 7) == 7 && bsfit__interrupted(a))
@@ -90,6 +91,9 @@ static bsfit_err search_levels(const double *pts, size_t m, double s0, double ma
       *sigma = l.pooled <= 1e-10 * size ? 0.0 : l.pooled;
       break;
     }
+    /* the last level is max_sigma itself: the window that accepts a level is narrower
+    ** than a step, so stepping past max_sigma could miss it by the start's luck */
+    s0 = s0 < max_sigma && s0 * LEVEL_STEP > max_sigma ? max_sigma : s0 * LEVEL_STEP;
   }
   return BSFIT_OK;
 }

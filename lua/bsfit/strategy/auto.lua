@@ -329,23 +329,46 @@ local function noisy_pieces(P, ctx)
   -- the smooth curve follows it as well, and stays polynomial
   if #pieces < 2 then return nil, "one piece" end
   ctx.sharp_candidate = { pieces = pieces, sigma = s } -- for the loops step, if need be
-  local held = 0
+  local held, weak, strong = 0, {}, 0
   for i, p in ipairs(pieces) do
     if p.kind ~= "free" then held = held + p.count end
     if p.kind == "free" and p.count == 0 then return nil, "bridge" end -- two models that do not meet
-    if p.join == "corner" and (p.turn < MIN_TURN or
-                               p.evidence < (p.turn >= STEEP and EVIDENCE_STEEP or EVIDENCE)) then
-      return nil, ("weak corner %d: turn %.3g evidence %.3g"):format(i, p.turn, p.evidence) end
+    if p.join == "corner" then
+      if p.turn < MIN_TURN or p.evidence < (p.turn >= STEEP and EVIDENCE_STEEP or EVIDENCE) then
+        weak[#weak + 1] = i
+      else
+        strong = strong + 1
+      end
+    end
     local q = pieces[(i - 2) % #pieces + 1]
     if p.join == "tangent" and p.kind == "line" and q.kind == "line" and #pieces > 1 then return nil, "tangent lines" end
   end
   if held < 0.9 * #P then return nil, ("held %d of %d"):format(held, #P) end
+  -- corners the data do not confirm: where others are (a made object), each is softened
+  -- into a bend (sharp.soften); where none is, the section is a smooth curve
+  if #weak > 0 and strong == 0 then
+    local p = pieces[weak[1]]
+    return nil, ("weak corner %d: turn %.3g evidence %.3g"):format(weak[1], p.turn, p.evidence)
+  end
+  for k = #weak, 1, -1 do
+    local soft = sharp.soften(P, pieces, weak[k])
+    if not soft then
+      local p = pieces[weak[k]]
+      return nil, ("weak corner %d: turn %.3g evidence %.3g"):format(weak[k], p.turn, p.evidence)
+    end
+    pieces = soft
+  end
   local bad = sharp.degenerate(pieces)
   if bad then return nil, bad end
   -- the curve itself must stay within the noise of every sample (6 sigma)
   local C = sharp.assemble(P, pieces, { closed = closed(ctx), sigma = s })
   local d = sharp.distances(C, P, pieces)
   if d:max() > 6 * s then return nil, ("curve %.3g sigma from a sample"):format(d:max() / s) end
+  -- pieces that cross (a short noisy side read as an arc bulging over its neighbour) are
+  -- no better than the smooth path, which the loops step can still repair
+  if closed(ctx) and bs.geom.self_intersections(C, math.max(2000, 32 * C:distinct())) > 0 then
+    return nil, "the pieces' curve crosses itself"
+  end
   ctx.segment_sigma, ctx.sharp_curve = s, C
   return pieces
 end

@@ -274,6 +274,70 @@ function M.distances(C, P, pieces)
   return bs.vector.new(t)
 end
 
+-- The foot of x on a primitive piece's model (its line, its circle) and the unit tangent
+-- there along the traversal.
+local function foot(p, x)
+  if p.kind == "line" then
+    local t = p.t_start
+    local u = (x[1] - p.start[1]) * t[1] + (x[2] - p.start[2]) * t[2]
+    return { p.start[1] + u * t[1], p.start[2] + u * t[2] }, { t[1], t[2] }
+  end
+  local c, r, s = p.centre, p.radius, p.sweep > 0 and 1 or -1
+  local dx, dy = x[1] - c[1], x[2] - c[2]
+  local d = math.sqrt(dx * dx + dy * dy)
+  if d == 0 then return nil end
+  return { c[1] + r * dx / d, c[2] + r * dy / d }, { -s * dy / d, s * dx / d }
+end
+
+-- the signed angle from a to b around c
+local function angle(c, a, b)
+  local ax, ay, bx, by = a[1] - c[1], a[2] - c[2], b[1] - c[1], b[2] - c[2]
+  return math.atan(ax * by - ay * bx, ax * bx + ay * by)
+end
+
+-- Softens the corner where pieces[i] starts into a smooth bend: the samples next to it (the
+-- last of the piece before, the first of pieces[i]; the shared one when the corner is
+-- sampled) become a free run joined tangentially to both, fitted like any free run. For a
+-- corner the data do not confirm (its evidence in sigma^2 below what noise gives): the
+-- samples cannot tell it from a bend one or two steps wide, and the bend keeps the rest of
+-- the section's lines and arcs. Returns the new list, or nil when a side is too short.
+function M.soften(P, pieces, i)
+  local n, m = #pieces, #P
+  local ia = (i - 2) % n + 1
+  local A, B = pieces[ia], pieces[i]
+  if A.kind == "free" or B.kind == "free" or ia == i then return nil end
+  local shared = (A.first - 1 + A.count - 1) % m + 1 == B.first
+  local giveA, giveB = shared and 0 or 1, 1
+  -- sides of 3 samples or fewer are what a fillet sampled as a polygon leaves: no bend
+  -- between those, the section keeps the smooth path
+  if A.count < 4 or B.count < 4 then return nil end
+  local F = { kind = "free", first = shared and B.first or (A.first - 1 + A.count - 1) % m + 1,
+              count = shared and 1 or 2, join = "tangent" }
+  local a_last = { P:get((A.first - 1 + A.count - 1 - giveA) % m + 1) }
+  local b_first = { P:get((B.first - 1 + giveB) % m + 1) }
+  local ea, ta = foot(A, a_last)
+  local sb, tb = foot(B, b_first)
+  if not ea or not sb then return nil end
+  local A2, B2 = {}, {}
+  for k, v in pairs(A) do A2[k] = v end
+  for k, v in pairs(B) do B2[k] = v end
+  A2.count = A.count - giveA
+  B2.first, B2.count, B2.join = (B.first - 1 + giveB) % m + 1, B.count - giveB, "tangent"
+  B2.turn, B2.evidence = nil, nil
+  if A.kind == "arc" then A2.sweep = A.sweep + angle(A.centre, A["end"], ea) end
+  if B.kind == "arc" then B2.sweep = B.sweep - angle(B.centre, B.start, sb) end
+  A2["end"], A2.t_end = ea, ta
+  B2.start, B2.t_start = sb, tb
+  F.start, F.t_start, F["end"], F.t_end = ea, ta, sb, tb
+  local out = {}
+  for k, p in ipairs(pieces) do
+    if k == ia then out[#out + 1] = A2
+    elseif k == i then out[#out + 1] = F; out[#out + 1] = B2
+    else out[#out + 1] = p end
+  end
+  return out
+end
+
 -- 1-based samples nearest to the corners (for rep.corners)
 function M.corner_samples(P, pieces)
   local out, m = {}, #P
