@@ -52,6 +52,8 @@ typedef struct bsfit_segment_opts {
   double exact;      /**< relative tolerance of exact data (of the size); 0: 1e-10 */
   size_t min_line;   /**< fewest samples of a line; 0: 3 */
   size_t min_arc;    /**< fewest samples of an arc; 0: 4 */
+  double param_cost; /**< noisy data: what a parameter of a piece costs, in sigma^2 of its
+                          residual; 0: 32, HUGE_VAL: parameters only (no residual) */
 } bsfit_segment_opts;
 
 /** Splits an ordered 2D section into lines, arcs and free-form runs.
@@ -62,7 +64,10 @@ typedef struct bsfit_segment_opts {
 ** least-squares line (geometric circle fit), size the bounding-box diagonal. The cover
 ** of the section is the one of least cost by dynamic programming: 2 per line (its
 ** parameters), 3 per arc, 1 per free sample plus 1 per free run, so a line beats an arc
-** and both beat free samples. Consecutive primitives meet where their models meet:
+** and both beat free samples. On noisy data (sigma > 0, up to 2000 samples) a piece also
+** costs its residual sum of squares in sigma^2, and each parameter param_cost sigma^2: a
+** line that holds the first samples of the fillet after it within tol explains them worse
+** than the fillet does, and gives them up. Consecutive primitives meet where their models meet:
 ** tangentially (G1) when their directions there differ by less than the noise allows,
 ** else at a corner; when the models do not meet between the two pieces' last and first
 ** samples, a free run bridges them. A free run meets a primitive at that primitive's
@@ -73,7 +78,8 @@ typedef struct bsfit_segment_opts {
 ** alternative misses by many sigma^2): two arcs of an ellipse meet at a small angle
 ** that a cubic explains as well.
 **
-** Cost: O(m r), r the longest run. Limits: 2D only; free-form runs are not split at
+** Cost: O(m r), r the longest run (the weighed cover of noisy data tries every start of
+** every run: O(m r) pieces, each O(1) from prefix sums of moments). Limits: 2D only; free-form runs are not split at
 ** corners of their own.
 ** @param[out] pieces at most cap pieces, in section order (for closed sections the
 **                    first starts where a primitive starts, when there is one).
@@ -90,7 +96,7 @@ BSFIT_API bsfit_err bsfit_segment(const double *pts, size_t m, int dim,
 ** Segmented at a level below its noise, a section's runs stop short, and the pooled
 ** residual of its lines and arcs (sum of squares over degrees of freedom) exceeds the
 ** level; at the noise the models are right and the two match. The levels tried rise by
-** 10^(1/2) from a sixteenth of a first guess (how far samples lie off their neighbours'
+** 10^(1/12) (the last at max_sigma) from a sixteenth of a first guess (how far samples lie off their neighbours'
 ** chord: the lower quartile, over its value for pure noise, 0.3186 sigma); the first
 ** whose pooled residual is at most 1.2 times the level gives the estimate. Sparse
 ** samples of a contour that bends between them make window-based estimates

@@ -59,4 +59,20 @@ double bsfit__segment_size(const double *pts, size_t m);
 bsfit_err bsfit__segment_check(const double *pts, size_t m, int dim, const bsfit_segment_opts *o,
                                bsfit_status *st);
 
+/* segment_moments.c: prefix sums of a section's moments (over 2m samples, wrapping), about
+** its centroid in units of its size, so that the residual sum of squares of the
+** least-squares line (Kasa circle, geometric to first order) of any run is O(1). Runs are
+** given unwrapped: first + n <= 2m. HUGE_VAL when the model cannot be fitted. */
+typedef struct bsfit__moments {
+  double *sum; /* (n + 1) x 9 prefix sums */
+  size_t n;
+  double c[2], scale;
+} bsfit__moments;
+
+bsfit_err bsfit__moments_init(bsfit__moments *mo, const double *pts, size_t m,
+                              const bsfit_allocator *a);
+void bsfit__moments_free(bsfit__moments *mo, const bsfit_allocator *a);
+double bsfit__moments_line_rss(const bsfit__moments *mo, size_t first, size_t n);
+double bsfit__moments_arc_rss(const bsfit__moments *mo, size_t first, size_t n);
+
 #endif

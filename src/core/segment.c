@@ -26,6 +26,9 @@ typedef struct section {
   size_t min_len[2];
   size_t *gaps; /* gaps[i]: how many of the steps j -> j+1, j < i (unwrapped, i <= 2m),
                    are longer than tol: a model needs that many distinct samples */
+  const bsfit__moments *mom; /* noisy sections: pieces cost their residual too (NULL: not) */
+  size_t longest[2];         /* the longest run of each kind */
+  double penalty;            /* sigma^2 per parameter, with mom */
   const bsfit_allocator *a;
 } section;
 
@@ -308,6 +311,41 @@ static double best_of_kind(const section *s, size_t origin, size_t j, int kind,
   return h->key[h->at[0]] + COST[kind];
 }
 
+/* On a noisy section a piece costs its residual as well, in sigma^2: a model that holds
+** its samples within the tolerance (4 sigma) but explains them worse than two would (a
+** line run on into the fillet after it, one side of a sparse corner) pays for it, and one
+** more piece is worth RSS_PENALTY sigma^2 per parameter (about what chance gives a
+** parameter that explains nothing; 2 is Akaike's, ln m Schwarz's). Every start is tried,
+** O(m x run length): only sections of up to RSS_COST_MAX samples are so weighed. */
+#define RSS_PENALTY 32.0
+#define RSS_COST_MAX 2000
+
+static double piece_rss(const section *s, int kind, size_t first, size_t n) {
+  return kind == LINE ? bsfit__moments_line_rss(s->mom, first, n)
+                      : bsfit__moments_arc_rss(s->mom, first, n);
+}
+
+static void best_primitive_weighed(const section *s, size_t origin, size_t j,
+                                   size_t *const len[2], const cell *prim, const cell *fr, cell *c) {
+  int kind;
+  double unit2 = s->unit * s->unit;
+  c->cost = HUGE_VAL;
+  for (kind = LINE; kind <= ARC; kind++) {
+    size_t minl = s->min_len[kind], a;
+    if (j + 1 < minl) continue;
+    for (a = j + 1 - minl; j - a < s->longest[kind]; a--) {
+      size_t n = j - a + 1;
+      if (len[kind][(origin + a) % s->m] >= n && distinct(s, (origin + a) % s->m, n) >= minl) {
+        cell t;
+        double cost = before_start(a, prim, fr, &t) + s->penalty * COST[kind] +
+                      piece_rss(s, kind, origin + a, n) / unit2;
+        if (cost < c->cost) *c = t, c->cost = cost, c->start = a, c->kind = kind;
+      }
+      if (a == 0) break;
+    }
+  }
+}
+
 /* best primitive piece ending at offset j (into *c); a line wins a tie with an arc */
 static void best_primitive(const section *s, size_t origin, size_t j, size_t *const len[2],
                            const cell *prim, const cell *fr, start_heap heaps[2], cell *c) {
@@ -333,9 +371,13 @@ static size_t cheapest_cover(const section *s, size_t origin, size_t *const len[
   int in_free;
   heaps[0].n = heaps[0].next = heaps[1].n = heaps[1].next = 0;
   for (j = 0; j < M; j++) {
-    double a = j > 0 ? fr[j - 1].cost + FREE_SAMPLE : HUGE_VAL;
-    double b = (j > 0 ? prim[j - 1].cost : 0) + FREE_SAMPLE + FREE_RUN;
-    best_primitive(s, origin, j, len, prim, fr, heaps, &prim[j]);
+    double unit = s->mom ? s->penalty : 1.0; /* a free sample explains itself exactly */
+    double a = j > 0 ? fr[j - 1].cost + unit * FREE_SAMPLE : HUGE_VAL;
+    double b = (j > 0 ? prim[j - 1].cost : 0) + unit * (FREE_SAMPLE + FREE_RUN);
+    if (s->mom)
+      best_primitive_weighed(s, origin, j, len, prim, fr, &prim[j]);
+    else
+      best_primitive(s, origin, j, len, prim, fr, heaps, &prim[j]);
     fr[j].kind = FREE;
     fr[j].shared = 0;
     if (a <= b)
@@ -645,6 +687,46 @@ static size_t arc_reach(const section *s, const bsfit_piece *p, const model *md,
   return k < 3 && n >= 3 ? 3 : k;
 }
 
+/* The residual over the window [first, first + n) (na samples of A, then B's) of a bend
+** instead of the corner: a circle tangent to both pieces at their meeting point V, of
+** radius r (its tangent points r tan(turn/2) from V), the models beyond. The bend is the
+** one smooth alternative a sparse section can tell from a corner only when it is wider
+** than the spacing: r from the one two steps long (arc length 2 h) up, the best kept. A
+** sparse ellipse's end (radius of curvature about a step) is such a bend; a true corner,
+** its nearest samples half a step away, is far from every one. */
+static double bend_rss(const section *s, const bsfit_piece *A, const model *ma,
+                       const bsfit_piece *B, const model *mb, size_t first, size_t na, size_t n) {
+  const double *V = A->end, *ta = A->t_end, *tb = B->t_start;
+  double theta = atan2(fabs(ta[0] * tb[1] - ta[1] * tb[0]), ta[0] * tb[0] + ta[1] * tb[1]);
+  double u[2] = {tb[0] - ta[0], tb[1] - ta[1]}, un = hypot(u[0], u[1]), len = 0, reach = 0;
+  double r, best = HUGE_VAL;
+  size_t k;
+  if (!(theta > 1e-3) || !(theta < PI - 1e-3) || n < 2 || !(un > 0)) return HUGE_VAL;
+  u[0] /= un, u[1] /= un;
+  for (k = 0; k < n; k++) {
+    const double *q = sample(s, first + k);
+    if (k > 0) len += hypot(q[0] - sample(s, first + k - 1)[0], q[1] - sample(s, first + k - 1)[1]);
+    reach = fmax(reach, hypot(q[0] - V[0], q[1] - V[1]));
+  }
+  for (r = 2 * len / (double)(n - 1) / theta; r * tan(theta / 2) <= reach; r *= 1.3) {
+    double T = r * tan(theta / 2), d = r / cos(theta / 2), c[2] = {V[0] + u[0] * d, V[1] + u[1] * d};
+    double rss = 0;
+    for (k = 0; k < n; k++) {
+      const double *q = sample(s, first + k);
+      double e;
+      if (k < na && (q[0] - V[0]) * ta[0] + (q[1] - V[1]) * ta[1] < -T)
+        e = model_dist(ma, q);
+      else if (k >= na && (q[0] - V[0]) * tb[0] + (q[1] - V[1]) * tb[1] > T)
+        e = model_dist(mb, q);
+      else
+        e = fabs(hypot(q[0] - c[0], q[1] - c[1]) - r);
+      rss += e * e;
+    }
+    best = fmin(best, rss);
+  }
+  return best;
+}
+
 static double join_evidence(const section *s, const bsfit_piece *A, const model *ma,
                             const bsfit_piece *B, const model *mb, double sigma) {
   size_t na = arc_reach(s, A, ma, A->count < EVIDENCE_REACH ? A->count : EVIDENCE_REACH, 1);
@@ -662,6 +744,8 @@ static double join_evidence(const section *s, const bsfit_piece *A, const model 
   n = na + nb - (size_t)shared;
   if (n > s->m) n = s->m;
   one = fmin(cubic_rss(s, first, n), pcubic_rss(s, first, n));
+  if (ma->kind == ARC && mb->kind == ARC)
+    one = fmin(one, bend_rss(s, A, ma, B, mb, first, shared ? na - 1 : na, n));
   if (fit_model(s, ARC, first, n, &md, &rms) < HUGE_VAL && rms * rms * (double)n < one)
     one = rms * rms * (double)n;
   return (one - two) / (sigma * sigma);
@@ -846,11 +930,12 @@ bsfit_err bsfit__segment_check(const double *pts, size_t m, int dim, const bsfit
   if (!bsfit__all_finite(pts, 2 * m))
     return bsfit__fail(st, BSFIT_ENONFINITE, "points contain NaN or Inf");
   if (!(o->sigma >= 0) || !isfinite(o->sigma) || !(o->tol_sigma >= 0) || !isfinite(o->tol_sigma) ||
+      !(o->param_cost >= 0) ||
       !(o->exact >= 0) || !(o->exact < 1) || o->min_line == 1 || o->min_arc == 1 || o->min_arc == 2)
     return bsfit__fail(st, BSFIT_EINVAL,
                        "segmentation options out of range (sigma %g, tol_sigma %g, "
-                       "exact %g, min_line %zu, min_arc %zu)",
-                       o->sigma, o->tol_sigma, o->exact, o->min_line, o->min_arc);
+                       "exact %g, min_line %zu, min_arc %zu, param_cost %g)",
+                       o->sigma, o->tol_sigma, o->exact, o->min_line, o->min_arc, o->param_cost);
   if (!(bsfit__segment_size(pts, m) > 0))
     return bsfit__fail(st, BSFIT_EDEGENERATE, "all %zu points coincide", m);
   return BSFIT_OK;
@@ -869,11 +954,12 @@ static void longest_runs(const section *s, size_t *const len[2], size_t rmax[2],
 /* The cheapest cover (pieces in order into p, from p[m + 1] as scratch). A closed
 ** section is cut where a piece starts: tried at the starts of the longest line and arc
 ** and at the samples after them, the cheapest kept. Returns the number of pieces. */
-static size_t cover(const section *s, size_t *const len[2], cell *prim, cell *fr,
+static size_t cover(section *s, size_t *const len[2], cell *prim, cell *fr,
                     start_heap heaps[2], bsfit_piece *p) {
   size_t rmax[2], from[2], origins[4], no = 0, k, i, best_np = 0;
   double best = HUGE_VAL;
   longest_runs(s, len, rmax, from);
+  s->longest[0] = rmax[0], s->longest[1] = rmax[1];
   for (k = 0; s->closed && k < 2; k++)
     if (rmax[k] > 0) {
       origins[no++] = from[k];
@@ -1104,6 +1190,7 @@ bsfit_err bsfit_segment(const double *pts, size_t m, int dim, const bsfit_segmen
   start_heap heaps[2];
   size_t *heap_at = NULL;
   double *heap_key = NULL;
+  bsfit__moments mom;
   bsfit_err e;
   memset(&o, 0, sizeof o);
   if (opts) o = *opts;
@@ -1116,6 +1203,8 @@ bsfit_err bsfit_segment(const double *pts, size_t m, int dim, const bsfit_segmen
   s.m = m;
   s.closed = o.closed != 0;
   s.a = a;
+  s.mom = NULL;
+  memset(&mom, 0, sizeof mom);
   s.min_len[LINE] = o.min_line ? o.min_line : 3;
   s.min_len[ARC] = o.min_arc ? o.min_arc : 4;
   s.tol = fmax((o.tol_sigma > 0 ? o.tol_sigma : 4.0) * o.sigma,
@@ -1136,6 +1225,16 @@ bsfit_err bsfit_segment(const double *pts, size_t m, int dim, const bsfit_segmen
     goto done;
   }
   count_gaps(&s);
+  /* below 1e-6 of the size the moments' rounding is no longer far below sigma^2 */
+  s.penalty = o.param_cost > 0 ? o.param_cost : RSS_PENALTY;
+  if (s.noisy && isfinite(s.penalty) && m <= RSS_COST_MAX &&
+      o.sigma >= 1e-6 * bsfit__segment_size(pts, m)) {
+    if (bsfit__moments_init(&mom, pts, m, a) != BSFIT_OK) {
+      e = bsfit__fail(st, BSFIT_ENOMEM, "out of memory for the segmentation of %zu points", m);
+      goto done;
+    }
+    s.mom = &mom;
+  }
   if ((e = maximal_runs(&s, LINE, len[0])) != BSFIT_OK ||
       (e = maximal_runs(&s, ARC, len[1])) != BSFIT_OK) {
     e = bsfit__fail(st, e, "segmentation interrupted");
@@ -1149,6 +1248,7 @@ bsfit_err bsfit_segment(const double *pts, size_t m, int dim, const bsfit_segmen
   *count = np;
   e = bsfit__ok(st);
 done:
+  bsfit__moments_free(&mom, a);
   bsfit__free(a, s.gaps, s.gaps ? (2 * m + 1) * sizeof(size_t): 0);
   bsfit__free(a, len[0], len[0] ? m * sizeof(size_t): 0);
   bsfit__free(a, len[1], len[1] ? m * sizeof(size_t): 0);

@@ -2,7 +2,7 @@
 ** lfeatures.c
 ** Lua access to the sharp-feature kernels (src/bsfit_features.h):
 **   bs.geom.segment(P [, {closed = true, sigma = 0, tol_sigma = 4, exact = 1e-10,
-**                         min_line = 3, min_arc = 4}]) --> table of pieces
+**                         min_line = 3, min_arc = 4, param_cost = 32}]) --> table of pieces
 **   bs.geom.self_intersections(C [, k = 2000]) --> number of crossings, parameter of one
 **   bs.curve.line(a, b)                                  --> Curve (degree 3)
 **   bs.curve.arc{centre = {x, y}, radius = r, start = a0, sweep = s} --> Curve (NURBS)
@@ -67,8 +67,8 @@ static void push_piece(lua_State *L, const bsfit_piece *p, size_t m) {
 
 /* bs.geom.segment(P [, opts]) */
 static int features_segment(lua_State *L) {
-  static const char *const names[] = {"closed",   "sigma",   "tol_sigma", "exact",
-                                      "min_line", "min_arc", NULL};
+  static const char *const names[] = {"closed",  "sigma",   "tol_sigma",  "exact",
+                                      "min_line", "min_arc", "param_cost", NULL};
   bsfit_points_ud *P = bsfit__lua_topoints(L, 1);
   int t = bsfit__lua_opttable(L, 2, names);
   bsfit_segment_opts o;
@@ -85,6 +85,11 @@ static int features_segment(lua_State *L) {
   o.exact = opt_number(L, t, "exact", 1e-10);
   ml = opt_integer(L, t, "min_line", 3);
   ma = opt_integer(L, t, "min_arc", 4);
+  if (bsfit__lua_field(L, t, "param_cost") != LUA_TNIL) { /* absent: the core's default */
+    o.param_cost = opt_number(L, t, "param_cost", 0);
+    luaL_argcheck(L, o.param_cost > 0, 2, "field 'param_cost' must be > 0 (math.huge: parameters only)");
+  }
+  lua_pop(L, 1);
   luaL_argcheck(L, o.sigma >= 0, 2, "field 'sigma' must be >= 0");
   luaL_argcheck(L, o.tol_sigma > 0, 2, "field 'tol_sigma' must be > 0");
   luaL_argcheck(L, o.exact > 0 && o.exact < 1, 2, "field 'exact' must be in (0, 1)");
