@@ -358,7 +358,7 @@ local function noisy_pieces(P, ctx)
     end
     pieces = soft
   end
-  local bad = sharp.degenerate(pieces)
+  local bad = sharp.degenerate(pieces) or sharp.far_corner(P, pieces)
   if bad then return nil, bad end
   -- the curve itself must stay within the noise of every sample (6 sigma)
   local C = sharp.assemble(P, pieces, { closed = closed(ctx), sigma = s })

@@ -274,6 +274,23 @@ function M.distances(C, P, pieces)
   return bs.vector.new(t)
 end
 
+-- A corner farther from the samples on either side of it than the longest step of the
+-- section (two noisy sides meeting at a spike far out: a keyhole of 4 uneven samples per
+-- side at noise 1e-2 had its last two sides meet 5 units below it) is not what the samples
+-- show. Returns a message, or nil.
+function M.far_corner(P, pieces)
+  local m, longest = #P, 0
+  for i = 1, m do longest = math.max(longest, dist({ P:get(i) }, { P:get(i % m + 1) })) end
+  for k, p in ipairs(pieces) do
+    if p.join == "corner" then
+      local before = (p.first - 2) % m + 1
+      local d = math.min(dist(p.start, { P:get(p.first) }), dist(p.start, { P:get(before) }))
+      if d > longest then return ("corner %d is %.3g from its samples (steps up to %.3g)"):format(k, d, longest) end
+    end
+  end
+  return nil
+end
+
 -- The foot of x on a primitive piece's model (its line, its circle) and the unit tangent
 -- there along the traversal.
 local function foot(p, x)
