@@ -28,6 +28,7 @@
 #define APPROX_DEGREE 3
 #define SPAN_SAMPLES 4 /* samples per span of a section (its knot, then inside) */
 #define FIT_SAMPLES 8  /* samples per span of a fit, uniform in chord length */
+#define SLIVER 1e-9    /* a span this short (fraction of the period) is a sliver */
 
 static int cmp_double(const void *x, const void *y) {
   double a = *(const double *)x, b = *(const double *)y;
@@ -42,6 +43,7 @@ typedef struct approx {
   /* one section's samples: base (its spans and the corners), then with the uniform ones
   ** merged in: parameters on the section t, chord-length parameters s, points, weights */
   double *bt, *bs, *bp, *t, *s, *pts, *wt;
+  double *tau; /* this section's parameters that go to the shared corners */
   size_t nb, m;
 } approx;
 
@@ -53,8 +55,9 @@ static double cyclic(double x, double y) {
 
 /* The period knots of a fit of about N spans into t: the uniform knots i / N farther than
 ** half a span from the shared corners (so no sliver), and each corner three times (a C0
-** knot: the fit may turn there as the sections do), other corners within a quarter span of
-** the seam left out (0 is always a knot). Returns the count of control points. */
+** knot: the fit may turn there as the sections do), however near each other or the seam
+** (a wing's trailing edge has two corners 1e-4 of the period apart, both needed) but for
+** one a sliver from the seam (0 is always a knot). Returns the count of control points. */
 static size_t fit_knots(const approx *ap, size_t N, double *t) {
   size_t i, j = 0, n = 0;
   double h = 1.0 / (double)N;
@@ -68,7 +71,7 @@ static size_t fit_knots(const approx *ap, size_t N, double *t) {
   }
   for (j = 0; j < ap->ncorners; j++) { /* merge the corners in, three times each */
     size_t at = n, r, copies = ap->corners[j] == 0.0 ? 2 : 3; /* 0 is there already */
-    if (copies == 3 && cyclic(ap->corners[j], 0.0) <= 0.25 * h) continue;
+    if (copies == 3 && cyclic(ap->corners[j], 0.0) <= SLIVER) continue;
     while (at > 0 && t[at - 1] > ap->corners[j]) at--;
     memmove(t + at + copies, t + at, (n - at) * sizeof(double));
     for (r = 0; r < copies; r++) t[at + r] = ap->corners[j];
@@ -87,12 +90,36 @@ static double dist3(const double *x, const double *y) {
               (x[2] - y[2]) * (x[2] - y[2]));
 }
 
+/* The piece ends of section c (ap->tau, increasing, in its parameters): for each shared
+** corner kappa_j, the section's own C0 knot nearest to it (within half the gap to the
+** neighbouring shared corners and BSFIT__SKIN_MERGE_APPROX), else kappa_j itself. Its
+** corner then maps onto kappa_j even where the merge did not line it up. */
+static void piece_ends(approx *ap, const bsfit_curve *c) {
+  size_t p = (size_t)c->degree, N = c->n - p, i = 0, j, r;
+  const double *k = ap->corners, *t = c->knots + p;
+  for (j = 0; j < ap->ncorners; j++) {
+    double w = BSFIT__SKIN_MERGE_APPROX, best = k[j], d = HUGE_VAL;
+    if (j > 0) w = fmin(w, 0.5 * (k[j] - k[j - 1]));
+    if (j + 1 < ap->ncorners) w = fmin(w, 0.5 * (k[j + 1] - k[j]));
+    while (i < N && t[i] < k[j] - w) i++;
+    for (r = i; k[j] > 0 && r < N && t[r] <= k[j] + w; r++) {
+      size_t run = 1;
+      while (r + run < N && t[r + run] == t[r]) run++;
+      if (run >= p && fabs(t[r] - k[j]) < d) d = fabs(t[r] - k[j]), best = t[r];
+      r += run - 1;
+    }
+    ap->tau[j] = j > 0 && !(best > ap->tau[j - 1]) ? k[j] : best;
+    if (j > 0 && !(ap->tau[j] > ap->tau[j - 1])) ap->tau[j] = ap->tau[j - 1]; /* merged away */
+  }
+}
+
 /* The base parameters of section c: SPAN_SAMPLES in each span (its knot first), 0 and the
-** shared corners, sorted, repeats dropped, into ap->bt; their points into ap->bp. */
+** piece ends, sorted, repeats dropped, into ap->bt; their points into ap->bp. */
 static void base_params(approx *ap, const bsfit_curve *c) {
   size_t p = (size_t)c->degree, N = c->n - p, i, j, m = 0;
+  piece_ends(ap, c);
   ap->bt[m++] = 0.0;
-  for (i = 0; i < ap->ncorners; i++) ap->bt[m++] = ap->corners[i];
+  for (i = 0; i < ap->ncorners; i++) ap->bt[m++] = ap->tau[i];
   for (i = 0; i < N; i++) {
     double lo = c->knots[p + i], hi = c->knots[p + i + 1];
     for (j = 0; hi > lo && j < SPAN_SAMPLES; j++)
@@ -107,21 +134,22 @@ static void base_params(approx *ap, const bsfit_curve *c) {
 }
 
 /* ap->bs: the base samples' chord length, mapped affinely onto each piece between the
-** shared corners (and 0, 1), so the corners keep their parameters. */
+** piece ends (tau_j onto the shared corner kappa_j; 0 and 1 stay), so the corners of every
+** section land on the same parameters. */
 static void chord_params(approx *ap) {
   size_t i, nb = ap->nb, j = 0, start = 0;
   double *L = ap->bs, total;
   for (i = 1, L[0] = 0; i < nb; i++) L[i] = L[i - 1] + dist3(ap->bp + 3 * i, ap->bp + 3 * i - 3);
   total = L[nb - 1] + dist3(ap->bp, ap->bp + 3 * (nb - 1));
-  while (start < nb) { /* the piece from sample start (a corner or 0) to the next corner */
-    double a = ap->bt[start], b = 1.0, La = L[start], Lb = total;
+  while (start < nb) { /* the piece from sample start (a piece end or 0) to the next end */
+    double ta = ap->bt[start], tb = 1.0, sa = 0.0, sb = 1.0, La = L[start], Lb = total;
     size_t end = start + 1;
-    while (j < ap->ncorners && ap->corners[j] <= a) j++;
-    if (j < ap->ncorners) b = ap->corners[j];
-    while (end < nb && ap->bt[end] < b) end++;
+    while (j < ap->ncorners && ap->tau[j] <= ta) sa = ap->corners[j++];
+    if (j < ap->ncorners) tb = ap->tau[j], sb = ap->corners[j];
+    while (end < nb && ap->bt[end] < tb) end++;
     if (end < nb) Lb = L[end];
     for (i = start; i < end; i++)
-      L[i] = Lb > La ? a + (b - a) * (L[i] - La) / (Lb - La) : ap->bt[i];
+      L[i] = Lb > La ? sa + (sb - sa) * (L[i] - La) / (Lb - La) : ap->bt[i];
     start = end;
   }
 }
@@ -320,7 +348,7 @@ static bsfit_err scratch_new(scratch *S, approx *ap, fits *F, const bsfit_curve 
   size_t kcap = hi + 1 + 3 * K * Nmax, k; /* a fit's knots, and every section's corners */
   bsfit_err e = BSFIT_OK;
   S->K = K;
-  S->doubles = 5 * capb + 6 * cap + 2 * kcap;
+  S->doubles = 6 * capb + 6 * cap + 2 * kcap;
   S->bytes = K * (2 * sizeof(bsfit_curve) + sizeof(size_t) + sizeof(double));
   S->buf = bsfit__alloc(a, S->doubles * sizeof(double));
   S->c = bsfit__alloc(a, S->bytes);
@@ -338,7 +366,7 @@ static bsfit_err scratch_new(scratch *S, approx *ap, fits *F, const bsfit_curve 
   ap->bt = S->buf, ap->bs = ap->bt + capb, ap->bp = ap->bs + capb;
   ap->t = ap->bp + 3 * capb, ap->s = ap->t + cap;
   ap->pts = ap->s + cap, ap->wt = ap->pts + 3 * cap;
-  ap->knots = ap->wt + cap, ap->corners = ap->knots + kcap;
+  ap->knots = ap->wt + cap, ap->corners = ap->knots + kcap, ap->tau = ap->corners + kcap;
   return e;
 }
 

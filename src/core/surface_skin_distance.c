@@ -10,9 +10,10 @@
 **      Newton from their fitting parameters;
 **   2. from the cubic to the section: the cubic at the same parameters and at 4 points per
 **      span, each given its exact closest point on the section (bsfit_curve_closest_many);
-**   3. each way, every local maximum of the sampled distance above half the tolerance is
+**   3. each way, every local maximum of the sampled distance above half the largest is
 **      refined by a golden-section search between its neighbours (the distance along a
-**      curve is smooth between knots, so the peak is found to a small fraction of the gap).
+**      curve is smooth between knots, so the peak is found to a small fraction of the gap):
+**      the distance reported is the true one, not only a bound that passes.
 ** A projection never reports a foot farther than the true one is near, so a distance is
 ** never underestimated by more than the search's resolution.
 */
@@ -162,7 +163,7 @@ static bsfit_err refine(way *w, double tol, double *worst, const bsfit_allocator
   B = bsfit__alloc(a, bytes);
   if (B == NULL) return bsfit__fail(st, BSFIT_ENOMEM, "out of memory for %zu samples", n);
   P = (double *)(B + n);
-  nb = local_maxima(w, 0.5 * tol, B);
+  nb = local_maxima(w, 0.5 * *worst, B); /* the peaks near the largest: the true maximum */
   e = measure(w, B, nb, P, P + 6 * n, P + 8 * n, a, st);
   for (it = 0; e == BSFIT_OK && it < REFINE_ITERS; it++) {
     for (j = 0; j < nb; j++) golden_step(&B[j]);
