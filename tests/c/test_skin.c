@@ -412,7 +412,7 @@ static void closed_eval(const closed *c, double x, double *out) {
   else assert_int_equal(bsfit_surface_eval(c->S, x, c->v, out, NULL), BSFIT_OK);
 }
 
-#define COARSE 1024
+#define COARSE 512
 #define WINDOWS 3
 
 /* min |X - c(x)| over 80 samples within 2 h of x0, then golden sections within h / 20 of
@@ -462,7 +462,7 @@ static double closed_distance(const closed *c, const double *smp, const double *
 }
 
 /* The Hausdorff distance between c1 and c2, measured densely and independently of the
-** skin's own check: 1000 points of each (random offsets) to the other. */
+** skin's own check: 500 points of each (random offsets) to the other. */
 static double hausdorff(const closed *c1, const closed *c2, test_rng *r) {
   double *smp = malloc(2 * COARSE * 3 * sizeof(double)), worst = 0, X[3];
   const closed *c[2] = {c1, c2};
@@ -472,8 +472,8 @@ static double hausdorff(const closed *c1, const closed *c2, test_rng *r) {
     closed_eval(c[i / COARSE], (double)(i % COARSE) / COARSE, smp + 3 * i);
   for (s = 0; s < 2; s++) {
     double off = rng_uniform(r), foot = 0;
-    for (i = 0; i < 1000; i++) {
-      closed_eval(c[s], (i + off) / 1000.0, X);
+    for (i = 0; i < 500; i++) {
+      closed_eval(c[s], (i + off) / 500.0, X);
       worst = fmax(worst, closed_distance(c[1 - s], smp + 3 * COARSE * (1 - s), X, &foot));
     }
   }
