@@ -31,7 +31,8 @@ local function ngon(n, R)
     local i = math.floor(s)
     local f = s - i
     local a0, a1 = 2 * math.pi * i / n, 2 * math.pi * (i + 1) / n
-    return R * ((1 - f) * math.cos(a0) + f * math.cos(a1)), R * ((1 - f) * math.sin(a0) + f * math.sin(a1))
+    return R * ((1 - f) * math.cos(a0) + f * math.cos(a1)),
+           R * ((1 - f) * math.sin(a0) + f * math.sin(a1))
   end
 end
 
@@ -39,7 +40,10 @@ local shapes = {
   vase = synth.shapes.vase(), bottle = synth.shapes.bottle(), box = synth.shapes.box(),
   wing = synth.shapes.wing(),
   prism = sweep("prism", ngon(5, 3), 0.05, -0.03, 8),
-  ellipse = sweep("ellipse", function(t) return 3 * math.cos(2 * math.pi * t), 1.8 * math.sin(2 * math.pi * t) end,
+  ellipse = sweep("ellipse",
+                  function(t)
+                    return 3 * math.cos(2 * math.pi * t), 1.8 * math.sin(2 * math.pi * t)
+                  end,
                   0.1, 0.04, 8),
 }
 
@@ -70,7 +74,8 @@ for _, r in ipairs(runs) do
   else
     synth.write_xyz(synth.cloud(shapes[sh], { n = cloud[1], noise = cloud[2], seed = #name }), path)
   end
-  local opts = { axis = "z", slices = slices, thickness = cloud and 0.2 or nil, cell = cloud and 0.1 or nil }
+  local opts = { axis = "z", slices = slices, thickness = cloud and 0.2 or nil,
+                 cell = cloud and 0.1 or nil }
   local base = pipeline.run(path, opts)
   local auto = assert(base.skin, name .. ": " .. tostring(base.surface_message)).tol
   for _, f in ipairs(factors) do
@@ -89,8 +94,9 @@ for _, r in ipairs(runs) do
     list:write(("%s %.17g %d %.17g %d %s\n"):format(tag, rep.tol, rep.count or 0,
       rep.max_deviation or 0, #rep.sections, table.concat(v, " ")))
     print(("# %s: tol %.3g, %s, %d sections"):format(tag, rep.tol,
-      (rep.count or 0) > 0 and ("%d columns, max_deviation %.3g"):format(rep.count + 3, rep.max_deviation)
-      or "exact", #rep.sections))
+      (rep.count or 0) > 0
+        and ("%d columns, max_deviation %.3g"):format(rep.count + 3, rep.max_deviation)
+        or "exact", #rep.sections))
   end
 end
 list:close()

@@ -5,12 +5,12 @@ For every case of DIR/cases.txt (written by skin_tol_cases.lua) with a light sur
 measured with scipy's B-splines: 6000 points of each curve (and every knot of the section,
 where its corners are) to the 4 nearest of 6000 points of the other (a k-d tree), each
 refined by a golden-section search of the exact point-to-curve distance within a sample
-step either side. It must be within the case's tolerance, no more than the reported max_deviation, and
-the report no more than a fifth of the tolerance above it (the true distance, not a loose
-bound). Exact surfaces (count 0) must pass through their sections (1e-9 of the size). The
-meshes of smooth objects (vase, bottle, ellipse sweep: dense mesh loops, a C0 knot per
-facet) must skin light at the default tolerance (they fell back to the exact surface when
-the check was parametric).
+step either side. It must be within the case's tolerance, no more than the reported
+max_deviation, and the report no more than a fifth of the tolerance above it (the true
+distance, not a loose bound). Exact surfaces (count 0) must pass through their sections
+(1e-9 of the size). The meshes of smooth objects (vase, bottle, ellipse sweep: dense mesh
+loops, a C0 knot per facet) must skin light at the default tolerance (they fell back to the
+exact surface when the check was parametric).
 Prints one line per case and a TAP-like summary; exits 1 on any failure.
 """
 import json
