@@ -46,8 +46,10 @@ static size_t mark_slivers(const bsfit_curve *c, const double *t, size_t N, doub
       j = k;
       continue;
     }
-    for (r = 0; r < p; r++)
+    for (r = 0; r < p; r++) {
       spread = fmax(spread, dist3(P + 3 * ((p + j + r) % N), P + 3 * ((p + j - 1) % N)));
+      if (drop_P[(p + j + r) % N] || drop_P[(p + j - 1) % N]) spread = HUGE_VAL; /* wrapped */
+    }
     if (spread <= limit && N - gone > 2 * p + 1) {
       for (r = 0; r < p; r++) drop_t[k + r] = 1, drop_P[(p + j + r) % N] = 1;
       gone += p;
