@@ -55,11 +55,27 @@ bsfit_err bsfit__skin_merge_corners(bsfit_curve *w, size_t K, double tol,
 size_t bsfit__skin_shared_corners(const bsfit_curve *w, size_t K, double *out);
 
 /* The sections replaced by periodic cubics on one knot vector (N uniform spans, and the
-** corners most sections share), N the smallest that keeps each within tol of its section
-** (parametric distance). *count: the cubics' control points, or 0 when no N up to 4 times
-** the largest section's count does (the sections unchanged); *dev: the largest distance
-** (surface_skin_approx.c). */
+** corners most sections share), each fitted at its own chord-length parameters, N the
+** smallest found that keeps each within tol of its section (Hausdorff distance, both ways).
+** *count: the cubics' control points, or 0 when no N up to 4 times the largest section's
+** count does (the sections unchanged); *dev: the largest distance (surface_skin_approx.c). */
 bsfit_err bsfit__skin_approximate(bsfit_curve *w, size_t K, double tol, size_t *count,
                                   double *dev, const bsfit_allocator *a, bsfit_status *st);
+
+/* Pieces of c shorter than 1e-9 of the period between two C0 knots (multiplicity p)
+** whose control points lie within `limit` of the piece's start dropped, the next piece
+** starting there (the curve moves by at most the largest spread, into *moved, which is
+** only raised). c is periodic on [0, 1), 3D, polynomial (surface_skin_slivers.c). */
+bsfit_err bsfit__skin_drop_slivers(bsfit_curve *c, double limit, double *moved,
+                                   const bsfit_allocator *a, bsfit_status *st);
+
+/* The Hausdorff distance between section c and its cubic f into *dev: c's m samples pts
+** (at its sorted parameters t) projected onto f from their fitting parameters s (sorted),
+** f's points at s and inside its spans given their closest points on c, each way's local
+** maxima refined (surface_skin_distance.c). Once a way exceeds tol the other is skipped:
+** *dev > tol then bounds the distance from below only. */
+bsfit_err bsfit__skin_distance(const bsfit_curve *c, const bsfit_curve *f, const double *t,
+                               const double *s, const double *pts, size_t m, double tol,
+                               double *dev, const bsfit_allocator *a, bsfit_status *st);
 
 #endif
