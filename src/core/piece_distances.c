@@ -68,15 +68,15 @@ static void box_union(double *to, const double *a, const double *b, size_t d) {
   for (q = 0; q < d; q++) to[q] = fmin(a[q], b[q]), to[d + q] = fmax(a[d + q], b[d + q]);
 }
 
-/* the distance from P to box b (0 inside) */
-static double box_dist(const double *b, const double *P, size_t d) {
+/* the squared distance from P to box b (0 inside) */
+static double box_dist2(const double *b, const double *P, size_t d) {
   double g2 = 0.0;
   size_t q;
   for (q = 0; q < d; q++) {
     double g = P[q] < b[q] ? b[q] - P[q] : (P[q] > b[d + q] ? P[q] - b[d + q] : 0.0);
     g2 += g * g;
   }
-  return sqrt(g2);
+  return g2;
 }
 
 static bsfit_err tree_build(span_tree *T, const bsfit_curve *c, double tol,
@@ -107,11 +107,12 @@ static void tree_free(span_tree *T, const bsfit_allocator *a) {
 /* Whether no span other than `own` (a leaf number) has its box within r of P. */
 static int alone_within(const span_tree *T, size_t own, const double *P, double r) {
   size_t stack[TREE_STACK], top = 0, d = T->d;
+  double r2 = r * r;
   stack[top++] = 1;
   while (top > 0) {
     size_t k = stack[--top];
     const double *b = T->box + k * 2 * d;
-    if (b[0] > b[d] || box_dist(b, P, d) > r) continue; /* empty, or too far */
+    if (b[0] > b[d] || box_dist2(b, P, d) > r2) continue; /* empty, or too far */
     if (k >= T->leaves) {
       if (k - T->leaves != own) return 0;
       continue;
@@ -173,10 +174,12 @@ static double curve_scale(const bsfit_curve *c) {
 static size_t uncertified(const bsfit_curve *c, const span_tree *T, const double *pts, size_t m,
                           const double *u, const double *dist, double tol, double *pts2,
                           size_t *idx, const bsfit_allocator *a) {
-  size_t i, q, n2 = 0, d = (size_t)c->dim, p = (size_t)c->degree;
+  size_t i, q, n2 = 0, d = (size_t)c->dim, p = (size_t)c->degree, s = p;
+  const double *U = c->knots;
   for (i = 0; i < m; i++) {
     const double *P = pts + i * d;
-    size_t s = bsfit_knots_find_span(c->knots, c->n, c->degree, u[i]);
+    if (!(u[i] >= U[s] && u[i] < U[s + 1])) /* samples in order: mostly the last span */
+      s = bsfit_knots_find_span(U, c->n, c->degree, u[i]);
     if ((i & 4095) == 4095 && bsfit__interrupted(a)) return SIZE_MAX;
     if (T->straight[s - p] && dist[i] <= line_dist(c, s, P) + tol &&
         alone_within(T, s - p, P, dist[i] + tol))
