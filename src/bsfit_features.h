@@ -151,12 +151,16 @@ BSFIT_API bsfit_err bsfit_curve_self_intersections(const bsfit_curve *c, size_t 
 ** covers the fraction [range[2j], range[2j+1]] of c's domain. Each point's foot is found
 ** by `iters` Newton steps (bsfit_curve_project_many) from its place in its piece's range
 ** (sample k of n at the fraction (k + 1/2) / n of it; a point equal to the one before it
-** from that one's place; a point in no piece from the domain's start), and by the global
-** search of bsfit_curve_closest_many: the nearer of the two is its distance. Newton from
-** inside its own piece never has to cross a corner, where a global start can stall.
+** from that one's place; a point in no piece from the domain's start), and, unless that
+** foot is certified (on a straight span, no farther than the span's line, no other span's
+** control points within that distance: then the smaller of the two distances), by the
+** global search of bsfit_curve_closest_many: the nearer is its distance. Newton from
+** inside its own piece never has to cross a corner, where a global start can stall. A
+** certified distance is within 1e-14 of the largest control-point coordinate of the
+** true one.
 ** @param[out] dist m distances.
-** Cost: that of bsfit_curve_closest_many plus iters evaluations per point; scratch 2 m
-** doubles through a.
+** Cost: iters evaluations and O(log spans) per point, plus bsfit_curve_closest_many for
+** the points not certified; scratch (dim + 3) m doubles and the spans' boxes through a.
 ** @return BSFIT_OK, the codes of bsfit_curve_closest_many and bsfit_curve_project_many,
 **         BSFIT_EINVAL (NULL arrays, a piece's samples outside the m points),
 **         BSFIT_ENONFINITE (a range), BSFIT_ENOMEM. */

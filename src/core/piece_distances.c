@@ -6,14 +6,16 @@
 ** Each sample's foot is first found by Newton from the sample's place in its own piece's
 ** parameter range: a search that never has to cross a corner (a search from a global
 ** start can stall at a C0 knot and report the distance to the corner instead). That
-** distance d is the true one when it is certified: the foot lies on a straight span (its
-** control points collinear), d is no more than the distance to that span's line, and no
-** other span comes within d of the sample (their control points' bounding boxes, which
-** hold them, lie farther: a tree of boxes over the spans answers in O(log n)). Every
-** other sample (on an arc or a free run, near a corner, or near another part of the
-** curve: a thin slot's far side) takes the nearer of d and the global search of
-** bsfit_curve_closest_many. On a section of lines nearly every sample is certified: the
-** global search (two thirds of the cost) runs only near the corners.
+** distance d is certified when the foot lies on a straight span (its control points on
+** one line to CERT_RTOL), d is no more than the distance to that line (plus the slack),
+** and no other span comes within d of the sample (their control points' bounding boxes,
+** which hold them, lie farther: a tree of boxes over the spans answers in O(log n)); the
+** smaller of d and the distance to the line is then the sample's distance, within the
+** slack of the true one. Every other sample (on an arc or a free run, near a corner, or
+** near another part of the curve: a thin slot's far side) takes the nearer of d and the
+** global search of bsfit_curve_closest_many. On a section of lines nearly every sample is
+** certified: the global search, two thirds of the cost, runs only near the corners (a
+** square of 10^5 exact samples: 21 -> 6 ms).
 */
 #include "internal.h"
 
@@ -172,7 +174,7 @@ static double curve_scale(const bsfit_curve *c) {
 /* The samples whose distance dist[i] (at parameter u[i]) is not certified, gathered into
 ** pts2 (their indices into idx); returns their number, SIZE_MAX when interrupted. */
 static size_t uncertified(const bsfit_curve *c, const span_tree *T, const double *pts, size_t m,
-                          const double *u, const double *dist, double tol, double *pts2,
+                          const double *u, double *dist, double tol, double *pts2,
                           size_t *idx, const bsfit_allocator *a) {
   size_t i, q, n2 = 0, d = (size_t)c->dim, p = (size_t)c->degree, s = p;
   const double *U = c->knots;
@@ -181,9 +183,13 @@ static size_t uncertified(const bsfit_curve *c, const span_tree *T, const double
     if (!(u[i] >= U[s] && u[i] < U[s + 1])) /* samples in order: mostly the last span */
       s = bsfit_knots_find_span(U, c->n, c->degree, u[i]);
     if ((i & 4095) == 4095 && bsfit__interrupted(a)) return SIZE_MAX;
-    if (T->straight[s - p] && dist[i] <= line_dist(c, s, P) + tol &&
-        alone_within(T, s - p, P, dist[i] + tol))
-      continue;
+    if (T->straight[s - p]) {
+      double dl = line_dist(c, s, P);
+      if (dist[i] <= dl + tol && alone_within(T, s - p, P, dist[i] + tol)) {
+        dist[i] = fmin(dist[i], dl);
+        continue;
+      }
+    }
     for (q = 0; q < d; q++) pts2[n2 * d + q] = P[q];
     idx[n2++] = i;
   }
