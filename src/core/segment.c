@@ -65,6 +65,14 @@ static double fit_model_from(const section *s, int kind, size_t first, size_t n,
     if (!bsfit__fit_line(&r, &md->line)) return HUGE_VAL;
     return bsfit__line_max(&md->line, &r, rms);
   }
+  /* an arc that cannot be fitted keeps a defined model, a point circle at its first
+  ** sample (unless the fit leaves its start circle), since the joins of its neighbours
+  ** read it: they read the scratch memory's old contents (test_segment_determinism) */
+  md->orient = 1.0;
+  if (warm != md) {
+    memcpy(md->circle.c, bsfit__run_at(&r, 0), sizeof md->circle.c);
+    md->circle.r = 0;
+  }
   if (!bsfit__fit_circle(&r, warm && warm->kind == ARC ? &warm->circle : NULL, 1e-3 * s->tol,
                          &md->circle))
     return HUGE_VAL;
