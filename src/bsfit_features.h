@@ -152,4 +152,28 @@ BSFIT_API bsfit_err bsfit_curve_self_intersections(const bsfit_curve *c, size_t 
                                                    const bsfit_allocator *al,
                                                    bsfit_status *st);
 
+/** The distances of m points to a curve assembled from pieces of them (auto's sharp path):
+** piece j holds the points first[j] .. first[j] + count[j] - 1 (0-based, modulo m) and
+** covers the fraction [range[2j], range[2j+1]] of c's domain. Each point's foot is found
+** by `iters` Newton steps (bsfit_curve_project_many) from its place in its piece's range
+** (sample k of n at the fraction (k + 1/2) / n of it; a point equal to the one before it
+** from that one's place; a point in no piece from the domain's start), and, unless that
+** foot is certified (on a straight span, no farther than the span's line, no other span's
+** control points within that distance: then the smaller of the two distances), by the
+** global search of bsfit_curve_closest_many: the nearer is its distance. Newton from
+** inside its own piece never has to cross a corner, where a global start can stall. A
+** certified distance is within 1e-14 of the largest control-point coordinate of the
+** true one.
+** @param[out] dist m distances.
+** Cost: iters evaluations and O(log spans) per point, plus bsfit_curve_closest_many for
+** the points not certified; scratch (dim + 3) m doubles and the spans' boxes through a.
+** @return BSFIT_OK, the codes of bsfit_curve_closest_many and bsfit_curve_project_many,
+**         BSFIT_EINVAL (NULL arrays, a piece's samples outside the m points),
+**         BSFIT_ENONFINITE (a range), BSFIT_ENOMEM. */
+BSFIT_API bsfit_err bsfit_curve_piece_distances(const bsfit_curve *c, const double *pts, size_t m,
+                                                const size_t *first, const size_t *count,
+                                                const double *range, size_t np, int iters,
+                                                double *dist, const bsfit_allocator *a,
+                                                bsfit_status *st);
+
 #endif /* BSFIT_FEATURES_H */

@@ -68,6 +68,19 @@ static double fit_model_from(const section *s, int kind, size_t first, size_t n,
     if (!bsfit__fit_line(&r, &md->line)) return HUGE_VAL;
     return bsfit__line_max(&md->line, &r, rms);
   }
+  /* an arc that cannot be fitted keeps a defined model, since the joins of its neighbours
+  ** read it (they read the scratch memory's old contents: test_segment_determinism): the
+  ** fit's start circle, or where that is not made (the three samples it starts from are
+  ** collinear or repeated), a nearly straight circle along the run's chord */
+  md->orient = 1.0;
+  if (warm != md) {
+    const double *a = bsfit__run_at(&r, 0), *b = bsfit__run_at(&r, n - 1);
+    double dx = b[0] - a[0], dy = b[1] - a[1], len = hypot(dx, dy);
+    if (!(len > 0)) dx = 1, dy = 0, len = 1;
+    md->circle.r = 1e8 * len;
+    md->circle.c[0] = 0.5 * (a[0] + b[0]) - dy / len * md->circle.r;
+    md->circle.c[1] = 0.5 * (a[1] + b[1]) + dx / len * md->circle.r;
+  }
   if (!bsfit__fit_circle(&r, warm && warm->kind == ARC ? &warm->circle : NULL, 1e-3 * s->tol,
                          &md->circle))
     return HUGE_VAL;

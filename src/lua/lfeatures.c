@@ -4,6 +4,8 @@
 **   bs.geom.segment(P [, {closed = true, sigma = 0, tol_sigma = 4, exact = 1e-10,
 **                         min_line = 3, min_arc = 4, param_cost = 32}]) --> table of pieces
 **   bs.geom.self_intersections(C [, k = 2000]) --> number of crossings, parameter of one
+**   bs.geom.piece_distances(C, P, pieces [, iters = 8]) --> Vector: each sample's distance
+**        to the curve assembled from the pieces (their first, count and range = {lo, hi})
 **   bs.curve.line(a, b)                                  --> Curve (degree 3)
 **   bs.curve.arc{centre = {x, y}, radius = r, start = a0, sweep = s} --> Curve (NURBS)
 **   bs.curve.join({C1, C2, ...}, {len1, len2, ...})      --> Curve
@@ -154,6 +156,66 @@ static int features_self_intersections(lua_State *L) {
   return 2;
 }
 
+/* integer field k of the table on top, in [lo, hi] (argument arg's piece j) */
+static size_t piece_field(lua_State *L, int arg, lua_Integer j, const char *k, lua_Integer lo,
+                          lua_Integer hi) {
+  int isnum;
+  lua_Integer v;
+  lua_getfield(L, -1, k);
+  v = lua_tointegerx(L, -1, &isnum);
+  lua_pop(L, 1);
+  if (!isnum || v < lo || v > hi)
+    return (size_t)luaL_argerror(L, arg, lua_pushfstring(L, "piece %I: field '%s' must be an "
+                                 "integer in [%I, %I]", j, k, lo, hi));
+  return (size_t)v;
+}
+
+/* bs.geom.piece_distances(C, P, pieces [, iters]) --> Vector of distances */
+static int features_piece_distances(lua_State *L) {
+  bsfit_curve *c = bsfit__lua_checkcurve(L, 1);
+  bsfit_points_ud *P = bsfit__lua_topoints(L, 2);
+  lua_Integer np, j, iters = luaL_optinteger(L, 4, 8), m = (lua_Integer)P->n;
+  size_t *first, *count;
+  double *range;
+  bsfit_vector_ud *d;
+  bsfit_allocator a = bsfit__lua_allocator(L);
+  bsfit_status st;
+  bsfit_err e;
+  luaL_checktype(L, 3, LUA_TTABLE);
+  luaL_argcheck(L, (int)P->dim == c->dim, 2, "points of the curve's dimension expected");
+  luaL_argcheck(L, iters >= 0 && iters <= 1000, 4, "iterations must be in [0, 1000]");
+  bsfit__lua_checkfinite(L, 2, P);
+  np = luaL_len(L, 3);
+  luaL_argcheck(L, np >= 0 && np <= m, 3, "at most one piece per point expected");
+  first = (size_t *)lua_newuserdatauv(L, ((size_t)np + 1) * 2 * sizeof *first, 0);
+  count = first + np + 1;
+  range = (double *)lua_newuserdatauv(L, ((size_t)np + 1) * 2 * sizeof *range, 0);
+  for (j = 1; j <= np; j++) {
+    int k;
+    lua_rawgeti(L, 3, j);
+    luaL_argcheck(L, lua_istable(L, -1), 3, "pieces must be tables");
+    first[j - 1] = piece_field(L, 3, j, "first", 1, m) - 1;
+    count[j - 1] = piece_field(L, 3, j, "count", 0, m);
+    if (lua_getfield(L, -1, "range") != LUA_TTABLE)
+      return luaL_argerror(L, 3, lua_pushfstring(L, "piece %I: field 'range' must be "
+                                                 "{lo, hi}", j));
+    for (k = 0; k < 2; k++) {
+      lua_rawgeti(L, -1, k + 1);
+      if (!lua_isnumber(L, -1))
+        return luaL_argerror(L, 3, lua_pushfstring(L, "piece %I: field 'range' must be "
+                                                   "{lo, hi}", j));
+      range[2 * (j - 1) + k] = lua_tonumber(L, -1);
+      lua_pop(L, 1);
+    }
+    lua_pop(L, 2);
+  }
+  d = bsfit__lua_allocvector(L, P->n);
+  e = bsfit_curve_piece_distances(c, P->xy, P->n, first, count, range, (size_t)np, (int)iters,
+                                  d->x, &a, &st);
+  if (e != BSFIT_OK) return bsfit__lua_raise(L, e, &st, 3);
+  return 1;
+}
+
 /* a point {x, y[, z, w]} at stack index i into x; returns its dimension */
 static int read_point(lua_State *L, int i, double *x) {
   int d, n;
@@ -246,6 +308,8 @@ void bsfit__lua_lib_features(lua_State *L) {
     lua_setfield(L, -2, "segment_sigma");
     lua_pushcfunction(L, features_self_intersections);
     lua_setfield(L, -2, "self_intersections");
+    lua_pushcfunction(L, features_piece_distances);
+    lua_setfield(L, -2, "piece_distances");
   }
   lua_pop(L, 1);
   if (lua_getfield(L, -1, "curve") == LUA_TTABLE) {

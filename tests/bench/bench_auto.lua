@@ -2,7 +2,8 @@
 -- sections of 10^3 .. 10^5 points (count search and parameter correction included),
 -- with the time of each step; then sections of lines and arcs (a T of 40 exact points,
 -- a D of 20, a rounded rectangle of 60 with noise 1e-4 of its size, 3000 exact points
--- of a gear), which take the segmentation path.
+-- of a gear), which take the segmentation path; last, minimums of many runs: 40-point
+-- sections against the issue's 1 ms, 10^5-point ones against its 100 ms.
 --   bsfit tests/bench/bench_auto.lua
 package.path = (arg[0]:match("^(.*)/[^/]*$") or ".") .. "/?.lua;" .. package.path
 local bs = require "bsfit"
@@ -86,18 +87,20 @@ for k = 0, 7 do
   end
 end
 local T = { { 2, 0 }, { 3, 0 }, { 3, 4 }, { 5, 4 }, { 5, 5 }, { 0, 5 }, { 0, 4 }, { 2, 4 } }
+local square = polygon({ { 0, 0 }, { 1, 0 }, { 1, 1 }, { 0, 1 } }, 25000, 0)
+local circle = (function()
+  local t = {}
+  for i = 1, 100000 do t[i] = { 3 * math.cos(2 * math.pi * i / 1e5), 3 * math.sin(2 * math.pi * i / 1e5) } end
+  return bs.points.new(t)
+end)()
 for _, c in ipairs {
   { "T, 40 exact points", polygon(T, 5, 0) },
   { "D, 20 exact points", dshape(20) },
   { "rounded rectangle, 64 points, noise 1e-4", rrect(8, 6.7e-3) },
   { "gear, 3000 exact points", polygon(gear, 75, 0) },
   -- long runs: the segmentation was quadratic in a run's length (6.5 s at 64000)
-  { "square, 10^5 exact points", polygon({ { 0, 0 }, { 1, 0 }, { 1, 1 }, { 0, 1 } }, 25000, 0) },
-  { "circle, 10^5 exact points", (function()
-    local t = {}
-    for i = 1, 100000 do t[i] = { 3 * math.cos(2 * math.pi * i / 1e5), 3 * math.sin(2 * math.pi * i / 1e5) } end
-    return bs.points.new(t)
-  end)() },
+  { "square, 10^5 exact points", square },
+  { "circle, 10^5 exact points", circle },
   -- a loop of a meshed vase (1000 x 500 quads), cut at z = 1.818: 762 pieces, where the
   -- arc length of a piece 3e-11 long split to 2^12 sub-intervals (7.7 s, now 0.08 s)
   { "vase mesh loop, 2000 exact points", (function()
@@ -140,5 +143,19 @@ for _, c in ipairs {
 } do
   local ms, steps = minimum(c[2], 300)
   print(("auto, %-28s minimum of 300 runs %7.3f ms  (steps, each its minimum: %s)"):format(
+    c[1] .. ":", ms, steps))
+end
+
+-- The large sections against the issue's 100 ms for 10^5 points, read the same way (the
+-- minimum of 20 runs, and each step's minimum): the exact ones take the pieces path
+-- (square) or try it (circle), where the segmentation and the deviation report (`measure`:
+-- every sample's distance to the curve) are the costs.
+for _, c in ipairs {
+  { "noisy star, 10^5 points", section(100000, 3) },
+  { "square, 10^5 exact points", square },
+  { "circle, 10^5 exact points", circle },
+} do
+  local ms, steps = minimum(c[2], 20)
+  print(("auto, %-28s minimum of 20 runs %8.3f ms  (steps, each its minimum: %s)"):format(
     c[1] .. ":", ms, steps))
 end

@@ -249,29 +249,10 @@ end
 -- The distances of the samples to the curve of the pieces (a Vector): each sample's foot is
 -- found by Newton from its place in its own piece's parameter range, so that it never has
 -- to cross a corner (a foot search from a global start can stall at a C0 knot and report
--- the distance to the corner instead); the nearer of that and the global closest point.
+-- the distance to the corner instead); the nearer of that and the global closest point
+-- (bs.geom.piece_distances: the whole loop in C).
 function M.distances(C, P, pieces)
-  local a, b = C:domain()
-  local m, u = #P, {}
-  for _, p in ipairs(pieces) do
-    for k = 0, p.count - 1 do
-      local f = (k + 0.5) / p.count
-      u[(p.first - 1 + k) % m + 1] = a + (b - a) * (p.range[1] + f * (p.range[2] - p.range[1]))
-    end
-  end
-  for i = 1, m do u[i] = u[i] or a end
-  -- a repeated point starts where its first does: the same distance, to the last digit
-  local prev = { P:get(1) }
-  for i = 2, m do
-    local q = { P:get(i) }
-    if q[1] == prev[1] and q[2] == prev[2] then u[i] = u[i - 1] end
-    prev = q
-  end
-  local _, d = C:project(P, bs.vector.new(u), 8)
-  local _, g = C:closest_many(P)
-  local t = {}
-  for i = 1, m do t[i] = math.min(d:get(i), g:get(i)) end
-  return bs.vector.new(t)
+  return bs.geom.piece_distances(C, P, pieces, 8)
 end
 
 -- A corner farther from the samples on either side of it than the longest step of the
