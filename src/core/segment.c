@@ -279,24 +279,47 @@ static double before_start(size_t a, const cell *prim, const cell *fr, cell *c) 
 typedef struct start_heap {
   size_t *at;
   double *key;
+  size_t *below; /* per start: the next older start of its group (NO_START: none) */
   size_t n, next;
+  size_t last, last_pos; /* the start pushed last, and where it went */
 } start_heap;
+
+/* The heap orders groups of starts by their latest (top) start. A start whose key equals
+** that of the start pushed just before it, still a group's top where it went, joins that
+** group: it is later than all, so it becomes the top and moves up past older starts of
+** its key only. Along a long run every start has one key (the run's first start, below
+** them, has its own): each push then costs O(1) instead of a sift past all the others,
+** and so does each removal at the run's end. Removals are at the top only, in both forms:
+** the same tops in the same order as a heap of every start. */
+#define NO_START ((size_t)-1)
 
 static int heap_before(const start_heap *h, size_t x, size_t y) {
   return h->key[x] < h->key[y] || (h->key[x] == h->key[y] && x > y);
 }
 
 static void heap_push(start_heap *h, size_t a) {
-  size_t i = h->n++;
+  size_t i;
+  if (h->last_pos < h->n && h->at[h->last_pos] == h->last && h->key[h->last] == h->key[a]) {
+    h->below[a] = h->last;
+    i = h->last_pos;
+  } else {
+    h->below[a] = NO_START;
+    i = h->n++;
+  }
   while (i > 0 && heap_before(h, a, h->at[(i - 1) / 2])) {
     h->at[i] = h->at[(i - 1) / 2];
     i = (i - 1) / 2;
   }
   h->at[i] = a;
+  h->last = a, h->last_pos = i;
 }
 
 static void heap_pop(start_heap *h) {
-  size_t i = 0, last = h->at[--h->n];
+  size_t i = 0, last;
+  if (h->below[h->at[0]] != NO_START)
+    last = h->below[h->at[0]];
+  else
+    last = h->at[--h->n];
   for (;;) {
     size_t c = 2 * i + 1;
     if (c >= h->n) break;
@@ -383,6 +406,7 @@ static size_t cheapest_cover(const section *s, size_t origin, size_t *const len[
   size_t M = s->m, j, np = 0;
   int in_free;
   heaps[0].n = heaps[0].next = heaps[1].n = heaps[1].next = 0;
+  heaps[0].last_pos = heaps[1].last_pos = 0;
   for (j = 0; j < M; j++) {
     double unit = s->mom ? s->penalty : 1.0; /* a free sample explains itself exactly */
     double a = j > 0 ? fr[j - 1].cost + unit * FREE_SAMPLE : HUGE_VAL;
@@ -1264,7 +1288,7 @@ bsfit_err bsfit_segment(const double *pts, size_t m, int dim, const bsfit_segmen
   bsfit_piece *buf = NULL;
   model *md = NULL;
   start_heap heaps[2];
-  size_t *heap_at = NULL;
+  size_t *heap_at = NULL, *heap_below = NULL;
   double *heap_key = NULL;
   bsfit__moments mom;
   bsfit_err e;
@@ -1296,7 +1320,9 @@ bsfit_err bsfit_segment(const double *pts, size_t m, int dim, const bsfit_segmen
   md = bsfit__alloc(a, bsfit__mulsize(2 * m + 2, sizeof(model)));
   heap_at = bsfit__alloc(a, bsfit__mulsize(2 * m, sizeof(size_t)));
   heap_key = bsfit__alloc(a, bsfit__mulsize(2 * m, sizeof(double)));
-  if (!s.gaps || !len[0] || !len[1] || !prim || !fr || !buf || !md || !heap_at || !heap_key) {
+  heap_below = bsfit__alloc(a, bsfit__mulsize(2 * m, sizeof(size_t)));
+  if (!s.gaps || !len[0] || !len[1] || !prim || !fr || !buf || !md || !heap_at || !heap_key ||
+      !heap_below) {
     e = bsfit__fail(st, BSFIT_ENOMEM, "out of memory for the segmentation of %zu points", m);
     goto done;
   }
@@ -1316,8 +1342,8 @@ bsfit_err bsfit_segment(const double *pts, size_t m, int dim, const bsfit_segmen
     e = bsfit__fail(st, e, "segmentation interrupted");
     goto done;
   }
-  heaps[0].at = heap_at, heaps[0].key = heap_key;
-  heaps[1].at = heap_at + m, heaps[1].key = heap_key + m;
+  heaps[0].at = heap_at, heaps[0].key = heap_key, heaps[0].below = heap_below;
+  heaps[1].at = heap_at + m, heaps[1].key = heap_key + m, heaps[1].below = heap_below + m;
   np = cover(&s, len, prim, fr, heaps, buf);
   np = finish_pieces(&s, buf, md, np);
   for (i = 0; i < np && i < cap; i++) pieces[i] = buf[i];
@@ -1334,5 +1360,6 @@ done:
   bsfit__free(a, md, md ? (2 * m + 2) * sizeof(model) : 0);
   bsfit__free(a, heap_at, heap_at ? 2 * m * sizeof(size_t) : 0);
   bsfit__free(a, heap_key, heap_key ? 2 * m * sizeof(double) : 0);
+  bsfit__free(a, heap_below, heap_below ? 2 * m * sizeof(size_t) : 0);
   return e;
 }
