@@ -41,18 +41,27 @@ static double bbox_diagonal(const contour *c) {
 /* A spike's side lines cross at a shallow angle, so where they meet is poorly known
 ** along its axis (and curved sides push it outwards): the corner point is kept no
 ** further out along the axis than the furthest sample of the window. */
-static void clamp_to_tip(const contour *c, size_t k, const side *left, const side *right,
-                         double *x) {
-  double axis[3], na = 0, top = -INFINITY;
-  long off;
+/* The unit axis of a spike, pointing to its tip (left's direction less right's); 0 when
+** the sides are parallel and there is none. */
+static int spike_axis(const side *left, const side *right, double axis[3]) {
+  double na = 0;
   int d;
   for (d = 0; d < 3; d++) {
     axis[d] = left->dir[d] - right->dir[d];
     na += axis[d] * axis[d];
   }
   na = sqrt(na);
-  if (!(na > 0)) return;
+  if (!(na > 0)) return 0;
   for (d = 0; d < 3; d++) axis[d] /= na;
+  return 1;
+}
+
+static void clamp_to_tip(const contour *c, size_t k, const side *left, const side *right,
+                         double *x) {
+  double axis[3], top = -INFINITY;
+  long off;
+  int d;
+  if (!spike_axis(left, right, axis)) return;
   for (off = -(long)left->count; off <= (long)right->count; off++) {
     const double *P;
     double pr = 0;
@@ -71,18 +80,14 @@ static void clamp_to_tip(const contour *c, size_t k, const side *left, const sid
 ** edge cut at random would make the curve cross over). Offsets lo..hi around k. */
 static double spike_tip(const contour *c, size_t k, const side *left, const side *right,
                         const double *x, double sigma, long lo, long hi) {
-  double axis[3], na = 0, top = -INFINITY, sum = 0, cnt = 0, proj[256], pos;
+  double axis[3], top = -INFINITY, sum = 0, cnt = 0, proj[256], pos;
   long off;
   int d;
-  for (d = 0; d < 3; d++) {
-    axis[d] = left->dir[d] - right->dir[d];
-    na += axis[d] * axis[d];
-  }
-  na = sqrt(na);
+  if (!spike_axis(left, right, axis)) return (double)k; /* no axis: the sample itself */
   for (off = lo; off <= hi; off++) {
     const double *P = point(c, at(c, k, off));
     double pr = 0;
-    for (d = 0; d < c->dim; d++) pr += (P[d] - x[d]) * axis[d] / na;
+    for (d = 0; d < c->dim; d++) pr += (P[d] - x[d]) * axis[d];
     proj[off - lo] = pr;
     if (pr > top) top = pr;
   }

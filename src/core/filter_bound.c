@@ -153,11 +153,20 @@ static int cmp_double(const void *x, const void *y) {
   return a < b ? -1 : (a > b);
 }
 
+/* x[0..m) sorted, each value once; returns how many */
+static size_t sorted_unique(double *x, size_t m) {
+  size_t i, k;
+  qsort(x, m, sizeof(double), cmp_double);
+  for (i = k = 0; i < m; i++)
+    if (k == 0 || x[i] > x[k - 1]) x[k++] = x[i];
+  return k;
+}
+
 /* The distinct knots of A and of B (B's moved by whole periods when B is closed) strictly
 ** inside (lo, hi), sorted, into x (room for both knot vectors, three times B's). */
 static size_t inner_knots(const bsfit_curve *A, const bsfit_curve *B, double lo, double hi,
                           double *x) {
-  size_t na = A->n + (size_t)A->degree + 1, nb = B->n + (size_t)B->degree + 1, i, m = 0, k;
+  size_t na = A->n + (size_t)A->degree + 1, nb = B->n + (size_t)B->degree + 1, i, m = 0;
   double a, b;
   int j;
   for (i = 0; i < na; i++)
@@ -168,10 +177,7 @@ static size_t inner_knots(const bsfit_curve *A, const bsfit_curve *B, double lo,
       double v = B->knots[i] + (double)j * (b - a);
       if (v > lo && v < hi) x[m++] = v;
     }
-  qsort(x, m, sizeof(double), cmp_double);
-  for (i = k = 0; i < m; i++)
-    if (k == 0 || x[i] > x[k - 1]) x[k++] = x[i];
-  return k;
+  return sorted_unique(x, m);
 }
 
 bsfit_err bsfit__curve_diff_bound(const bsfit_curve *A, const bsfit_curve *B, double thr,
@@ -281,17 +287,14 @@ static double patch_bound(const sbound *w, const double *u, const double *v, int
 /* Distinct knots of one direction of both surfaces in [lo, hi] (ends included), sorted. */
 static size_t merged(const double *U1, size_t n1, const double *U2, size_t n2, double lo,
                      double hi, double *x) {
-  size_t i, m = 0, k;
+  size_t i, m = 0;
   x[m++] = lo;
   x[m++] = hi;
   for (i = 0; i < n1; i++)
     if (U1[i] > lo && U1[i] < hi) x[m++] = U1[i];
   for (i = 0; i < n2; i++)
     if (U2[i] > lo && U2[i] < hi) x[m++] = U2[i];
-  qsort(x, m, sizeof(double), cmp_double);
-  for (i = k = 0; i < m; i++)
-    if (k == 0 || x[i] > x[k - 1]) x[k++] = x[i];
-  return k;
+  return sorted_unique(x, m);
 }
 
 bsfit_err bsfit__surface_diff_bound(const bsfit_surface *A, const bsfit_surface *B, double thr,
