@@ -183,6 +183,17 @@ function M.all()
   }
 end
 
+-- The names of every outline, sorted (a stable order for sweeps and their messages).
+function M.names()
+  local names = {}
+  for k in pairs(M.all()) do names[#names + 1] = k end
+  table.sort(names)
+  return names
+end
+
+-- the distance between two 2D points {x, y}
+function M.dist(a, b) return math.sqrt((a[1] - b[1]) ^ 2 + (a[2] - b[2]) ^ 2) end
+
 -- }======================================================================
 
 -- {======================================================================

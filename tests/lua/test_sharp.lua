@@ -8,13 +8,8 @@ local bs = require "bsfit"
 local shapes = require "shapes_sharp"
 local auto = require "bsfit.strategy.auto"
 
-local function dist(a, b) return math.sqrt((a[1] - b[1]) ^ 2 + (a[2] - b[2]) ^ 2) end
-
--- the names of every generated outline, sorted (a stable order for the messages)
-local ALL = shapes.all()
-local NAMES = {}
-for k in pairs(ALL) do NAMES[#NAMES + 1] = k end
-table.sort(NAMES)
+local dist = shapes.dist
+local ALL, NAMES = shapes.all(), shapes.names()
 
 -- The cases of the clean sweep: every outline, 3 to 10 samples per side, even and
 -- uneven (two seeds).

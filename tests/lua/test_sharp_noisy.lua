@@ -15,12 +15,8 @@ local shapes = require "shapes_sharp"
 local synth = require "synth"
 local auto = require "bsfit.strategy.auto"
 
-local function dist(a, b) return math.sqrt((a[1] - b[1]) ^ 2 + (a[2] - b[2]) ^ 2) end
-
-local ALL = shapes.all()
-local NAMES = {}
-for k in pairs(ALL) do NAMES[#NAMES + 1] = k end
-table.sort(NAMES)
+local dist = shapes.dist
+local ALL, NAMES = shapes.all(), shapes.names()
 
 -- Where a corner may be found: the true corners, and the vertex of every arc shorter than
 -- the sampling's step h (the issue: "a fillet wider than the local spacing is not a

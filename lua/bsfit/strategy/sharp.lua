@@ -261,11 +261,19 @@ end
 -- show. Returns a message, or nil.
 function M.far_corner(P, pieces)
   local m, longest = #P, 0
-  for i = 1, m do longest = math.max(longest, dist({ P:get(i) }, { P:get(i % m + 1) })) end
+  local function to(x, i) -- the distance from {x, y} to sample i
+    local px, py = P:get(i)
+    return math.sqrt((x[1] - px) ^ 2 + (x[2] - py) ^ 2)
+  end
+  local qx, qy = P:get(m)
+  for i = 1, m do -- the steps, the closing one too
+    local px, py = P:get(i)
+    longest = math.max(longest, math.sqrt((px - qx) ^ 2 + (py - qy) ^ 2))
+    qx, qy = px, py
+  end
   for k, p in ipairs(pieces) do
     if p.join == "corner" then
-      local before = (p.first - 2) % m + 1
-      local d = math.min(dist(p.start, { P:get(p.first) }), dist(p.start, { P:get(before) }))
+      local d = math.min(to(p.start, p.first), to(p.start, (p.first - 2) % m + 1))
       if d > longest then return ("corner %d is %.3g from its samples (steps up to %.3g)"):format(k, d, longest) end
     end
   end
