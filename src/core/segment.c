@@ -4,57 +4,10 @@
 ** free-form runs (bsfit_features.h): the maximal runs each model explains, the cover
 ** of least cost (dynamic programming), and where consecutive pieces meet.
 */
-#include "features_internal.h"
-
 #include <math.h>
 #include <string.h>
 
-#define PI 3.14159265358979323846
-
-#define LINE BSFIT_PIECE_LINE
-#define ARC BSFIT_PIECE_ARC
-#define FREE BSFIT_PIECE_FREE
-
-/* what the segmentation works on */
-typedef struct section {
-  const double *pts;
-  size_t m;
-  int closed;
-  double tol;  /* a sample fits a model within tol */
-  double unit; /* sigma: tol / tol_sigma (evidence is counted in unit^2) */
-  int noisy;   /* tol is set by sigma, not by the exact floor */
-  size_t min_len[2];
-  size_t *gaps; /* gaps[i]: how many of the steps j -> j+1, j < i (unwrapped, i <= 2m),
-                   are longer than tol: a model needs that many distinct samples */
-  const bsfit__moments *mom; /* noisy sections: pieces cost their residual too (NULL: not) */
-  size_t longest[2];         /* the longest run of each kind */
-  double penalty;            /* sigma^2 per parameter, with mom */
-  const bsfit_allocator *a;
-} section;
-
-/* distinct samples (steps longer than tol, plus one) among n from first */
-static size_t distinct(const struct section *s, size_t first, size_t n) {
-  return s->gaps[first + n - 1] - s->gaps[first] + 1;
-}
-
-/* a model of either kind */
-typedef struct model {
-  int kind;
-  bsfit__line line;
-  bsfit__circle circle;
-  double orient; /* arcs: +1 counter-clockwise along the samples, -1 clockwise */
-} model;
-
-static const double *sample(const section *s, size_t i) { return s->pts + 2 * (i % s->m); }
-
-static bsfit__run run_of(const section *s, size_t first, size_t n) {
-  bsfit__run r;
-  r.pts = s->pts;
-  r.m = s->m;
-  r.first = first % s->m;
-  r.n = n;
-  return r;
-}
+#include "segment_internal.h"
 
 /* fits a model of `kind` to n samples from `first`; its largest distance (HUGE_VAL
 ** when it cannot be fitted) */
@@ -101,10 +54,6 @@ static double fit_model_from(const section *s, int kind, size_t first, size_t n,
 static double fit_model(const section *s, int kind, size_t first, size_t n, model *md,
                         double *rms) {
   return fit_model_from(s, kind, first, n, NULL, md, rms);
-}
-
-static double model_dist(const model *md, const double *x) {
-  return md->kind == LINE ? bsfit__line_dist(&md->line, x) : bsfit__circle_dist(&md->circle, x);
 }
 
 /* {====================================================================
@@ -577,220 +526,6 @@ static int meet(const section *s, const bsfit_piece *A, const model *ma, const b
   angle = atan2(fabs(ta[0] * tb[1] - ta[1] * tb[0]), ta[0] * tb[0] + ta[1] * tb[1]);
   lim = 4.0 * s->tol / fmax(1.5 * fmin(max_spacing(s, A), max_spacing(s, B)), 1e-300);
   return angle <= fmin(lim, 0.1) ? BSFIT_JOIN_TANGENT : BSFIT_JOIN_CORNER;
-}
-
-/* }==================================================================== */
-
-/* {====================================================================
-** Evidence for corners
-** ===================================================================== */
-
-/* residual sum of squares of a cubic y(x) over the run, in the frame of its chord (x
-** along it, scaled to [-1, 1]); HUGE_VAL when it cannot be fitted */
-static double cubic_rss(const section *s, size_t first, size_t n) {
-  const double *a = sample(s, first), *b = sample(s, first + n - 1);
-  double ux = b[0] - a[0], uy = b[1] - a[1], len = hypot(ux, uy),
-         A[BSFIT__SMALL][BSFIT__SMALL] = {{0}};
-  double g[4] = {0, 0, 0, 0}, rss = 0;
-  size_t k;
-  int i, j;
-  if (n < 6 || !(len > 0)) return HUGE_VAL;
-  ux /= len, uy /= len;
-  for (k = 0; k < n; k++) {
-    const double *q = sample(s, first + k);
-    double x = ((q[0] - a[0]) * ux + (q[1] - a[1]) * uy) / len * 2.0 - 1.0;
-    double y = -(q[0] - a[0]) * uy + (q[1] - a[1]) * ux, pw[4] = {1, x, x * x, x * x * x};
-    for (i = 0; i < 4; i++) {
-      g[i] += pw[i] * y;
-      for (j = 0; j < 4; j++) A[i][j] += pw[i] * pw[j];
-    }
-  }
-  if (!bsfit__small_cholesky(4, A)) return HUGE_VAL;
-  bsfit__small_chol_solve(4, A, g);
-  for (k = 0; k < n; k++) {
-    const double *q = sample(s, first + k);
-    double x = ((q[0] - a[0]) * ux + (q[1] - a[1]) * uy) / len * 2.0 - 1.0;
-    double y = -(q[0] - a[0]) * uy + (q[1] - a[1]) * ux;
-    double e = y - (g[0] + x * (g[1] + x * (g[2] + x * g[3])));
-    rss += e * e;
-  }
-  return rss;
-}
-
-/* residual sum of squares (true distances) of a parametric cubic (x(t), y(t)) over the
-** run: t by chord length, one least-squares fit, each sample's foot point by Newton, a
-** second fit at those feet. A smooth bend that turns too far for a cubic graph over the
-** chord (the end of an ellipse, sampled sparsely) is one for it. HUGE_VAL when it cannot
-** be fitted. */
-#define EVIDENCE_REACH 8 /* samples on each side of a join (fewer on arcs: arc_reach) */
-#define PCUBIC_MAX (2 * EVIDENCE_REACH)
-static void pcubic_fit(const section *s, size_t first, size_t n, const double *t, double cx[4],
-                       double cy[4], int *ok) {
-  double A[BSFIT__SMALL][BSFIT__SMALL] = {{0}}, L[BSFIT__SMALL][BSFIT__SMALL];
-  size_t k;
-  int i, j;
-  for (i = 0; i < 4; i++) cx[i] = cy[i] = 0;
-  for (k = 0; k < n; k++) {
-    const double *q = sample(s, first + k);
-    double pw[4] = {1, t[k], t[k] * t[k], t[k] * t[k] * t[k]};
-    for (i = 0; i < 4; i++) {
-      cx[i] += pw[i] * q[0], cy[i] += pw[i] * q[1];
-      for (j = 0; j < 4; j++) A[i][j] += pw[i] * pw[j];
-    }
-  }
-  memcpy(L, A, sizeof L);
-  *ok = bsfit__small_cholesky(4, L);
-  if (!*ok) return;
-  bsfit__small_chol_solve(4, L, cx);
-  bsfit__small_chol_solve(4, L, cy);
-}
-
-/* the foot parameter of q on the cubic from t0 (a few Newton steps), its squared distance */
-static double pcubic_foot(const double cx[4], const double cy[4], const double *q, double *t0) {
-  double t = *t0, ex = 0, ey = 0;
-  int it;
-  for (it = 0; it < 6; it++) {
-    double x = cx[0] + t * (cx[1] + t * (cx[2] + t * cx[3]));
-    double y = cy[0] + t * (cy[1] + t * (cy[2] + t * cy[3]));
-    double dx = cx[1] + t * (2 * cx[2] + 3 * t * cx[3]), dy = cy[1] + t * (2 * cy[2] + 3 * t * cy[3]);
-    double ddx = 2 * cx[2] + 6 * t * cx[3], ddy = 2 * cy[2] + 6 * t * cy[3];
-    double g, h;
-    ex = x - q[0], ey = y - q[1];
-    g = ex * dx + ey * dy;
-    h = dx * dx + dy * dy + ex * ddx + ey * ddy;
-    if (!(h > 0)) break;
-    t -= g / h;
-  }
-  {
-    double x = cx[0] + t * (cx[1] + t * (cx[2] + t * cx[3]));
-    double y = cy[0] + t * (cy[1] + t * (cy[2] + t * cy[3]));
-    ex = x - q[0], ey = y - q[1];
-  }
-  *t0 = t;
-  return ex * ex + ey * ey;
-}
-
-/* A parametric cubic can stop and turn (a cusp): a corner in disguise. It stands for a
-** smooth curve only when its speed over [-1, 1] stays within a factor PCUBIC_SPEED (the
-** samples, by chord length, move at an even pace along a smooth bend). */
-#define PCUBIC_SPEED 3.0
-static int pcubic_regular(const double cx[4], const double cy[4]) {
-  double lo = HUGE_VAL, hi = 0;
-  int k;
-  for (k = 0; k <= 16; k++) {
-    double t = -1 + k / 8.0, dx = cx[1] + t * (2 * cx[2] + 3 * t * cx[3]);
-    double dy = cy[1] + t * (2 * cy[2] + 3 * t * cy[3]), v = hypot(dx, dy);
-    lo = fmin(lo, v), hi = fmax(hi, v);
-  }
-  return hi > 0 && hi <= PCUBIC_SPEED * lo;
-}
-
-static double pcubic_rss(const section *s, size_t first, size_t n) {
-  double t[PCUBIC_MAX], cx[4], cy[4], len = 0, rss = 0;
-  size_t k;
-  int ok, round;
-  if (n < 10 || n > PCUBIC_MAX) return HUGE_VAL;
-  t[0] = 0;
-  for (k = 1; k < n; k++) {
-    const double *a = sample(s, first + k - 1), *b = sample(s, first + k);
-    len += hypot(b[0] - a[0], b[1] - a[1]);
-    t[k] = len;
-  }
-  if (!(len > 0)) return HUGE_VAL;
-  for (k = 0; k < n; k++) t[k] = 2 * t[k] / len - 1;
-  for (round = 0; round < 2; round++) {
-    pcubic_fit(s, first, n, t, cx, cy, &ok);
-    if (!ok) return HUGE_VAL;
-    rss = 0;
-    for (k = 0; k < n; k++) rss += pcubic_foot(cx, cy, sample(s, first + k), &t[k]);
-  }
-  return pcubic_regular(cx, cy) ? rss : HUGE_VAL;
-}
-
-/* How much worse one smooth curve explains the samples of A and B next to their corner
-** (up to EVIDENCE_REACH on each side: a smooth contour is smooth locally, while two
-** long pieces of it together may turn too far for one cubic) than their two models, in
-** units of sigma^2 = (tol / tol_sigma)^2. */
-#define EVIDENCE_TURN (PI / 4)
-
-/* How many samples of an arc, counted from its sample `from` (its first when step is +1,
-** its last when -1), lie within EVIDENCE_TURN of that sample around its centre: an arc's
-** tangent turns as it goes, and two half ellipses meet at the ends of the major axis in
-** what one cubic across 8 + 8 sparse samples (two thirds of the ellipse) cannot follow. */
-static size_t arc_reach(const section *s, const bsfit_piece *p, const model *md, size_t n, int end) {
-  const double *c = md->circle.c, *q0 = sample(s, end ? p->first + p->count - 1 : p->first);
-  size_t k;
-  if (md->kind != ARC) return n;
-  for (k = 1; k < n; k++) {
-    const double *q = sample(s, end ? p->first + p->count - 1 - k : p->first + k);
-    double ax = q0[0] - c[0], ay = q0[1] - c[1], bx = q[0] - c[0], by = q[1] - c[1];
-    if (atan2(fabs(ax * by - ay * bx), ax * bx + ay * by) > EVIDENCE_TURN) break;
-  }
-  return k < 3 && n >= 3 ? 3 : k;
-}
-
-/* The residual over the window [first, first + n) (na samples of A, then B's) of a bend
-** instead of the corner: a circle tangent to both pieces at their meeting point V, of
-** radius r (its tangent points r tan(turn/2) from V), the models beyond. The bend is the
-** one smooth alternative a sparse section can tell from a corner only when it is wider
-** than the spacing: r from the one two steps long (arc length 2 h) up, the best kept. A
-** sparse ellipse's end (radius of curvature about a step) is such a bend; a true corner,
-** its nearest samples half a step away, is far from every one. */
-static double bend_rss(const section *s, const bsfit_piece *A, const model *ma,
-                       const bsfit_piece *B, const model *mb, size_t first, size_t na, size_t n) {
-  const double *V = A->end, *ta = A->t_end, *tb = B->t_start;
-  double theta = atan2(fabs(ta[0] * tb[1] - ta[1] * tb[0]), ta[0] * tb[0] + ta[1] * tb[1]);
-  double u[2] = {tb[0] - ta[0], tb[1] - ta[1]}, un = hypot(u[0], u[1]), len = 0, reach = 0;
-  double r, best = HUGE_VAL;
-  size_t k;
-  if (!(theta > 1e-3) || !(theta < PI - 1e-3) || n < 2 || !(un > 0)) return HUGE_VAL;
-  u[0] /= un, u[1] /= un;
-  for (k = 0; k < n; k++) {
-    const double *q = sample(s, first + k);
-    if (k > 0) len += hypot(q[0] - sample(s, first + k - 1)[0], q[1] - sample(s, first + k - 1)[1]);
-    reach = fmax(reach, hypot(q[0] - V[0], q[1] - V[1]));
-  }
-  for (r = 2 * len / (double)(n - 1) / theta; r * tan(theta / 2) <= reach; r *= 1.3) {
-    double T = r * tan(theta / 2), d = r / cos(theta / 2), c[2] = {V[0] + u[0] * d, V[1] + u[1] * d};
-    double rss = 0;
-    for (k = 0; k < n; k++) {
-      const double *q = sample(s, first + k);
-      double e;
-      if (k < na && (q[0] - V[0]) * ta[0] + (q[1] - V[1]) * ta[1] < -T)
-        e = model_dist(ma, q);
-      else if (k >= na && (q[0] - V[0]) * tb[0] + (q[1] - V[1]) * tb[1] > T)
-        e = model_dist(mb, q);
-      else
-        e = fabs(hypot(q[0] - c[0], q[1] - c[1]) - r);
-      rss += e * e;
-    }
-    best = fmin(best, rss);
-  }
-  return best;
-}
-
-static double join_evidence(const section *s, const bsfit_piece *A, const model *ma,
-                            const bsfit_piece *B, const model *mb, double sigma) {
-  size_t na = arc_reach(s, A, ma, A->count < EVIDENCE_REACH ? A->count : EVIDENCE_REACH, 1);
-  size_t nb = arc_reach(s, B, mb, B->count < EVIDENCE_REACH ? B->count : EVIDENCE_REACH, 0), k,
-         first, n;
-  int shared = B->first == (A->first + A->count - 1) % s->m;
-  double two = 0, one, rms;
-  model md;
-  first = A->first + A->count - na;
-  for (k = 0; k < na; k++) two += pow(model_dist(ma, sample(s, first + k)), 2);
-  for (k = 0; k < nb; k++) two += pow(model_dist(mb, sample(s, B->first + k)), 2);
-  if (shared)
-    two -= 0.5 * (pow(model_dist(ma, sample(s, B->first)), 2) +
-                  pow(model_dist(mb, sample(s, B->first)), 2));
-  n = na + nb - (size_t)shared;
-  if (n > s->m) n = s->m;
-  one = fmin(cubic_rss(s, first, n), pcubic_rss(s, first, n));
-  if (ma->kind == ARC && mb->kind == ARC)
-    one = fmin(one, bend_rss(s, A, ma, B, mb, first, shared ? na - 1 : na, n));
-  if (fit_model(s, ARC, first, n, &md, &rms) < HUGE_VAL && rms * rms * (double)n < one)
-    one = rms * rms * (double)n;
-  return (one - two) / (sigma * sigma);
 }
 
 /* }==================================================================== */
@@ -1269,7 +1004,7 @@ static size_t finish_pieces(const section *s, bsfit_piece *p, model *md, size_t 
     if (p[i].join != BSFIT_JOIN_CORNER) continue;
     p[i].turn = atan2(fabs(q->t_end[0] * p[i].t_start[1] - q->t_end[1] * p[i].t_start[0]),
                       q->t_end[0] * p[i].t_start[0] + q->t_end[1] * p[i].t_start[1]);
-    p[i].evidence = join_evidence(s, q, &md[(i + np - 1) % np], &p[i], &md[i], s->unit);
+    p[i].evidence = bsfit__join_evidence(s, q, &md[(i + np - 1) % np], &p[i], &md[i], s->unit);
   }
   return np;
 }

@@ -1,0 +1,68 @@
+/*
+** segment_internal.h
+** What the segmentation's files share (segment.c: runs, cover, joins, pieces;
+** segment_evidence.c: the evidence of corners): the section worked on, a side model of
+** either kind and their small accessors. Not part of the public API.
+*/
+#ifndef BSFIT_SEGMENT_INTERNAL_H
+#define BSFIT_SEGMENT_INTERNAL_H
+
+#include "features_internal.h"
+
+#define PI 3.14159265358979323846
+
+#define LINE BSFIT_PIECE_LINE
+#define ARC BSFIT_PIECE_ARC
+#define FREE BSFIT_PIECE_FREE
+
+/* what the segmentation works on */
+typedef struct section {
+  const double *pts;
+  size_t m;
+  int closed;
+  double tol;  /* a sample fits a model within tol */
+  double unit; /* sigma: tol / tol_sigma (evidence is counted in unit^2) */
+  int noisy;   /* tol is set by sigma, not by the exact floor */
+  size_t min_len[2];
+  size_t *gaps; /* gaps[i]: how many of the steps j -> j+1, j < i (unwrapped, i <= 2m),
+                   are longer than tol: a model needs that many distinct samples */
+  const bsfit__moments *mom; /* noisy sections: pieces cost their residual too (NULL: not) */
+  size_t longest[2];         /* the longest run of each kind */
+  double penalty;            /* sigma^2 per parameter, with mom */
+  const bsfit_allocator *a;
+} section;
+
+/* distinct samples (steps longer than tol, plus one) among n from first */
+static inline size_t distinct(const struct section *s, size_t first, size_t n) {
+  return s->gaps[first + n - 1] - s->gaps[first] + 1;
+}
+
+/* a model of either kind */
+typedef struct model {
+  int kind;
+  bsfit__line line;
+  bsfit__circle circle;
+  double orient; /* arcs: +1 counter-clockwise along the samples, -1 clockwise */
+} model;
+
+static inline const double *sample(const section *s, size_t i) { return s->pts + 2 * (i % s->m); }
+
+static inline bsfit__run run_of(const section *s, size_t first, size_t n) {
+  bsfit__run r;
+  r.pts = s->pts;
+  r.m = s->m;
+  r.first = first % s->m;
+  r.n = n;
+  return r;
+}
+
+static inline double model_dist(const model *md, const double *x) {
+  return md->kind == LINE ? bsfit__line_dist(&md->line, x) : bsfit__circle_dist(&md->circle, x);
+}
+
+/* segment_evidence.c: how much worse one smooth curve explains the samples of A and B
+** next to their corner than their two models, in units of sigma^2 */
+double bsfit__join_evidence(const section *s, const bsfit_piece *A, const model *ma,
+                            const bsfit_piece *B, const model *mb, double sigma);
+
+#endif
