@@ -108,28 +108,11 @@ static void test_distances_are_the_polygon_distances(void **state) {
   print_message("worst |distance - polygon distance| %.3g\n", worst);
 }
 
-typedef struct alloc_count {
-  size_t live, calls;
-} alloc_count;
-
-static void *count_alloc(void *ud, void *p, size_t osz, size_t nsz) {
-  alloc_count *c = ud;
-  c->calls++;
-  if (nsz == 0) {
-    c->live -= osz;
-    free(p);
-    return NULL;
-  }
-  p = realloc(p, nsz);
-  if (p) c->live += nsz - osz;
-  return p;
-}
-
 static void test_scratch_interrupt_and_errors(void **state) {
   static double xy[2 * 20000], d[20000];
   double V[8], range[8] = {0, 0.25, 0.25, 0.5, 0.5, 0.75, 0.75, 1};
   size_t first[4] = {0, 5000, 10000, 15000}, count[4] = {5000, 5000, 5000, 5000}, i;
-  alloc_count cnt = {0, 0};
+  counting cnt = {0, 0, 0}; /* testutil.h's counting allocator */
   volatile int stop = 0;
   bsfit_allocator a;
   bsfit_status st;
@@ -144,7 +127,7 @@ static void test_scratch_interrupt_and_errors(void **state) {
     xy[2 * i] = V[2 * s] + f * (V[2 * ((s + 1) % 4)] - V[2 * s]);
     xy[2 * i + 1] = V[2 * s + 1] + f * (V[2 * ((s + 1) % 4) + 1] - V[2 * s + 1]);
   }
-  a.fn = count_alloc, a.ud = &cnt, a.interrupt = &stop;
+  a.fn = counting_alloc, a.ud = &cnt, a.interrupt = &stop;
   assert_int_equal(bsfit_curve_piece_distances(&c, xy, 20000, first, count, range, 4, 8, d, &a,
                                                NULL),
                    BSFIT_OK);
