@@ -407,7 +407,8 @@ static size_t piece_count(const section *s, const bsfit_piece *p) {
   return p->count;
 }
 
-static void refit(const section *s, bsfit_piece *p, model *md) {
+/* segment_internal.h */
+void bsfit__segment_refit(const section *s, bsfit_piece *p, model *md) {
   double rms = 0;
   p->max = fit_model(s, p->kind, p->first, piece_count(s, p), md, &rms);
   p->rms = rms;
@@ -417,8 +418,8 @@ static void refit(const section *s, bsfit_piece *p, model *md) {
   }
 }
 
-/* the model's foot point of x and its unit tangent there (along the traversal) */
-static void foot(const model *md, const double *x, double *f, double *t) {
+/* segment_internal.h */
+void bsfit__model_foot(const model *md, const double *x, double *f, double *t) {
   if (md->kind == LINE) {
     double u = (x[0] - md->line.p[0]) * md->line.d[0] + (x[1] - md->line.p[1]) * md->line.d[1];
     f[0] = md->line.p[0] + u * md->line.d[0];
@@ -455,7 +456,7 @@ static int touching(const section *s, const model *ma, const model *mb, double *
   if (ma->kind == LINE && mb->kind == LINE) return 0;
   if (ma->kind == LINE || mb->kind == LINE) {
     const model *ml = ma->kind == LINE ? ma : mb, *mc = ma->kind == LINE ? mb : ma;
-    foot(ml, mc->circle.c, x, t);
+    bsfit__model_foot(ml, mc->circle.c, x, t);
     return fabs(hypot(x[0] - mc->circle.c[0], x[1] - mc->circle.c[1]) - mc->circle.r) <= 2 * s->tol;
   } else {
     const bsfit__circle *A = &ma->circle, *B = &mb->circle;
@@ -482,8 +483,8 @@ static int in_gap(const section *s, const bsfit_piece *A, const model *ma, const
   double ta[2], tb[2], f[2], chord = hypot(qb[0] - qa[0], qb[1] - qa[1]);
   double reach_a = 1.5 * max_spacing(s, A) + 1.5 * chord + s->tol;
   double reach_b = 1.5 * max_spacing(s, B) + 1.5 * chord + s->tol;
-  foot(ma, qa, f, ta);
-  foot(mb, qb, f, tb);
+  bsfit__model_foot(ma, qa, f, ta);
+  bsfit__model_foot(mb, qb, f, tb);
   if (hypot(x[0] - qa[0], x[1] - qa[1]) > reach_a || hypot(x[0] - qb[0], x[1] - qb[1]) > reach_b)
     return 0;
   if ((x[0] - qa[0]) * ta[0] + (x[1] - qa[1]) * ta[1] < -slack) return 0;
@@ -521,8 +522,8 @@ static int meet(const section *s, const bsfit_piece *A, const model *ma, const b
       best = d, x[0] = c[0], x[1] = c[1], found = 1;
   }
   if (!found) return 0;
-  foot(ma, x, f, ta);
-  foot(mb, x, f, tb);
+  bsfit__model_foot(ma, x, f, ta);
+  bsfit__model_foot(mb, x, f, tb);
   angle = atan2(fabs(ta[0] * tb[1] - ta[1] * tb[0]), ta[0] * tb[0] + ta[1] * tb[1]);
   lim = 4.0 * s->tol / fmax(1.5 * fmin(max_spacing(s, A), max_spacing(s, B)), 1e-300);
   return angle <= fmin(lim, 0.1) ? BSFIT_JOIN_TANGENT : BSFIT_JOIN_CORNER;
@@ -564,16 +565,16 @@ static int join_pieces(const section *s, bsfit_piece *A, const model *ma, bsfit_
     if (!k) return 0;
     memcpy(A->end, x, sizeof x);
     memcpy(B->start, x, sizeof x);
-    foot(ma, x, f, A->t_end);
-    foot(mb, x, f, B->t_start);
+    bsfit__model_foot(ma, x, f, A->t_end);
+    bsfit__model_foot(mb, x, f, B->t_start);
     B->join = (bsfit_join_kind)k;
     return 1;
   }
   /* a free run meets a primitive at the primitive's extreme sample, tangentially */
   if (A->kind != FREE)
-    foot(ma, sample(s, A->first + A->count - 1), f, t);
+    bsfit__model_foot(ma, sample(s, A->first + A->count - 1), f, t);
   else
-    foot(mb, sample(s, B->first), f, t);
+    bsfit__model_foot(mb, sample(s, B->first), f, t);
   memcpy(A->end, f, sizeof f);
   memcpy(B->start, f, sizeof f);
   memcpy(A->t_end, t, sizeof t);
@@ -600,7 +601,7 @@ static void short_runs(const section *s, bsfit_piece *p, model *md, size_t np) {
     if (!meet(s, &p[ia], &md[ia], &trial, &mt, x) || !meet(s, &trial, &mt, &p[ib], &md[ib], x))
       continue;
     p[i].kind = trial.kind;
-    refit(s, &p[i], &md[i]);
+    bsfit__segment_refit(s, &p[i], &md[i]);
   }
 }
 
@@ -633,8 +634,8 @@ static size_t absorb_strays(const section *s, bsfit_piece *p, model *md, size_t 
       if (to[k] == 0) p[ia].count++;
     for (k = 0; k < n; k++)
       if (to[k] == 1) p[ib].first = (p[ib].first + s->m - 1) % s->m, p[ib].count++;
-    refit(s, &p[ia], &md[ia]);
-    refit(s, &p[ib], &md[ib]);
+    bsfit__segment_refit(s, &p[ia], &md[ia]);
+    bsfit__segment_refit(s, &p[ib], &md[ib]);
     memmove(&p[i], &p[i + 1], (np - i - 1) * sizeof *p);
     memmove(&md[i], &md[i + 1], (np - i - 1) * sizeof *md);
     np--;
@@ -662,8 +663,8 @@ static int absorb_split(const section *s, bsfit_piece *A, model *ma, bsfit_piece
     if (!ok_a || !ok_b) continue;
     A->count += kk;
     B->first = (B->first + s->m - k) % s->m, B->count += k;
-    refit(s, A, ma);
-    refit(s, B, mb);
+    bsfit__segment_refit(s, A, ma);
+    bsfit__segment_refit(s, B, mb);
     return 1;
   }
   return 0;
@@ -721,11 +722,11 @@ static void open_ends(const section *s, bsfit_piece *p, const model *md, size_t 
   if (p[0].kind == FREE)
     memcpy(p[0].start, sample(s, 0), sizeof p[0].start);
   else
-    foot(&md[0], sample(s, 0), p[0].start, p[0].t_start);
+    bsfit__model_foot(&md[0], sample(s, 0), p[0].start, p[0].t_start);
   if (z->kind == FREE)
     memcpy(z->end, sample(s, s->m - 1), sizeof z->end);
   else
-    foot(&md[n - 1], sample(s, s->m - 1), z->end, t), memcpy(z->t_end, t, sizeof t);
+    bsfit__model_foot(&md[n - 1], sample(s, s->m - 1), z->end, t), memcpy(z->t_end, t, sizeof t);
 }
 
 /* }==================================================================== */
@@ -838,115 +839,14 @@ static void rebalance(const section *s, bsfit_piece *p, model *md, size_t np) {
              model_dist(&md[i], sample(s, B->first)) < model_dist(&md[ib], sample(s, B->first)))
         B->count--, B->first = (B->first + 1) % s->m, A->count++, moved = 1;
       if (moved) {
-        refit(s, A, &md[i]);
-        refit(s, B, &md[ib]);
+        bsfit__segment_refit(s, A, &md[i]);
+        bsfit__segment_refit(s, B, &md[ib]);
       }
     }
     if (!moved) break;
   }
 }
 
-/* The radius of the circle tangent to two lines (its centre V + u k r) that fits F's
-** samples best: Gauss-Newton on the geometric distances, from r. Its residual sum of
-** squares into *rss; -1 when it fails. */
-static double fillet_radius(const section *s, const bsfit_piece *F, const double *V,
-                            const double *u, double k, double r, double *rss) {
-  int it;
-  size_t j;
-  for (it = 0; it < 20; it++) {
-    double g = 0, h = 0, step;
-    *rss = 0;
-    for (j = 0; j < F->count; j++) {
-      const double *q = sample(s, F->first + j);
-      double dx = q[0] - V[0] - u[0] * k * r, dy = q[1] - V[1] - u[1] * k * r, d = hypot(dx, dy);
-      double e = d - r, de = d > 0 ? -(dx * u[0] + dy * u[1]) * k / d - 1.0 : -1.0;
-      g += de * e;
-      h += de * de;
-      *rss += e * e;
-    }
-    if (!(h > 0)) return -1.0;
-    step = -g / h;
-    r += step;
-    if (!(r > 0)) return -1.0;
-    if (fabs(step) <= 1e-15 * r) break;
-  }
-  return r;
-}
-
-/* A fillet: an arc meeting a line tangentially at both ends. Its circle is then known
-** from the two lines up to its radius (its centre on the bisector of their corner), so
-** it is refitted with that one unknown: a short noisy arc alone leaves its radius
-** uncertain by many percent, the lines fix all but one of its parameters. But the lines
-** are extrapolated to their corner, and an error there moves the radius by 1/(k - 1)
-** times as much (2.4 at a right angle): the refit is taken only when its samples do not
-** tell against it, i.e. it adds at most 9 sigma^2 to their residual (the chi-square of its
-** two fewer parameters at 99%). The tangent points move to the new circle. */
-static void refit_fillet(const section *s, bsfit_piece *A, const model *ma, bsfit_piece *F,
-                         model *mf, bsfit_piece *B, const model *mb) {
-  double V[2], u[2], k, r, c[2], f[2], t[2], rms = 0, un, cosphi, rss;
-  if (!bsfit__meet_lines(&ma->line, &mb->line, V)) return;
-  u[0] = mb->line.d[0] - ma->line.d[0];
-  u[1] = mb->line.d[1] - ma->line.d[1];
-  un = hypot(u[0], u[1]);
-  cosphi = -(ma->line.d[0] * mb->line.d[0] + ma->line.d[1] * mb->line.d[1]);
-  if (!(un > 1e-12) || cosphi >= 1 - 1e-12) return;
-  u[0] /= un, u[1] /= un;
-  k = 1.0 / sin(0.5 * acos(fmax(-1.0, fmin(1.0, cosphi))));
-  r = fillet_radius(s, F, V, u, k, mf->circle.r, &rss);
-  if (!(r > 0) || rss - F->rms * F->rms * (double)F->count > 9.0 * s->unit * s->unit) return;
-  c[0] = V[0] + u[0] * k * r;
-  c[1] = V[1] + u[1] * k * r;
-  mf->circle.c[0] = c[0], mf->circle.c[1] = c[1], mf->circle.r = r;
-  F->centre[0] = c[0], F->centre[1] = c[1], F->radius = r;
-  foot(ma, c, f, t);
-  memcpy(A->end, f, sizeof f), memcpy(F->start, f, sizeof f);
-  foot(mb, c, f, t);
-  memcpy(B->start, f, sizeof f), memcpy(F->end, f, sizeof f);
-  foot(mf, F->start, f, F->t_start);
-  foot(mf, F->end, f, F->t_end);
-  F->max = bsfit__circle_max(&mf->circle, &(bsfit__run){s->pts, s->m, F->first, F->count}, &rms);
-  F->rms = rms;
-}
-
-/* Samples of line A past its tangent point with fillet F (their feet beyond A's end along
-** A), and of B before it, lie on the fillet: a line that held them (they were within its
-** tolerance) bends the fillet's radius by percents. They go to F; returns how many moved. */
-static size_t claim_for_fillet(const section *s, bsfit_piece *A, const model *ma, bsfit_piece *F,
-                               bsfit_piece *B, const model *mb) {
-  size_t moved = 0;
-  while (A->count > s->min_len[LINE]) {
-    const double *q = sample(s, A->first + A->count - 1);
-    if ((q[0] - A->end[0]) * ma->line.d[0] + (q[1] - A->end[1]) * ma->line.d[1] <= 0) break;
-    A->count--, F->first = (F->first + s->m - 1) % s->m, F->count++, moved++;
-  }
-  while (B->count > s->min_len[LINE]) {
-    const double *q = sample(s, B->first);
-    if ((q[0] - B->start[0]) * mb->line.d[0] + (q[1] - B->start[1]) * mb->line.d[1] >= 0) break;
-    B->first = (B->first + 1) % s->m, B->count--, F->count++, moved++;
-  }
-  return moved;
-}
-
-static void refit_fillets(const section *s, bsfit_piece *p, model *md, size_t np) {
-  size_t i;
-  int pass;
-  for (pass = 0; pass < 2; pass++)
-    for (i = 0; i < np; i++) {
-      size_t ia = (i + np - 1) % np, ib = (i + 1) % np;
-      if (p[i].kind != ARC || np < 3 || p[ia].kind != LINE || p[ib].kind != LINE) continue;
-      if (!s->closed && (i == 0 || i + 1 == np)) continue;
-      if (p[i].join != BSFIT_JOIN_TANGENT || p[ib].join != BSFIT_JOIN_TANGENT) continue;
-      refit_fillet(s, &p[ia], &md[ia], &p[i], &md[i], &p[ib], &md[ib]);
-      /* the second pass places every tangent point on the lines as they end up */
-      if (pass == 0 && s->noisy && claim_for_fillet(s, &p[ia], &md[ia], &p[i], &p[ib], &md[ib])) {
-        refit(s, &p[ia], &md[ia]);
-        refit(s, &p[ib], &md[ib]);
-        refit_fillet(s, &p[ia], &md[ia], &p[i], &md[i], &p[ib], &md[ib]);
-      }
-    }
-}
-
-/* Models, ends and sweeps of the np pieces of the cover (p has room for 2 np). */
 /* Does one arc holding every sample of a closed section go round its circle? The closing
 ** step (from the last sample to the first, around the centre in the samples' direction)
 ** must be no longer than 1.5 times the longest of the others: half a circle is an open
@@ -968,18 +868,19 @@ static int goes_round(const section *s, const bsfit_piece *p, const model *md) {
   return closing <= 1.5 * longest;
 }
 
+/* Models, ends and sweeps of the np pieces of the cover (p has room for 2 np). */
 static size_t finish_pieces(const section *s, bsfit_piece *p, model *md, size_t np) {
   size_t i;
   for (i = 0; i < np; i++) {
     md[i].kind = p[i].kind;
-    if (p[i].kind != FREE) refit(s, &p[i], &md[i]);
+    if (p[i].kind != FREE) bsfit__segment_refit(s, &p[i], &md[i]);
   }
   np = s->noisy ? absorb_strays(s, p, md, np) : absorb_free_runs(s, p, md, np);
   short_runs(s, p, md, np);
   rebalance(s, p, md, np);
   if (np == 1 && s->closed && p[0].kind == ARC &&
       goes_round(s, &p[0], &md[0])) { /* a whole circle */
-    foot(&md[0], sample(s, p[0].first), p[0].start, p[0].t_start);
+    bsfit__model_foot(&md[0], sample(s, p[0].first), p[0].start, p[0].t_start);
     memcpy(p[0].end, p[0].start, sizeof p[0].end);
     memcpy(p[0].t_end, p[0].t_start, sizeof p[0].t_end);
     p[0].join = BSFIT_JOIN_TANGENT;
@@ -994,7 +895,7 @@ static size_t finish_pieces(const section *s, bsfit_piece *p, model *md, size_t 
   }
   np = place_ends(s, p, md, np);
   if (!s->closed) open_ends(s, p, md, np);
-  refit_fillets(s, p, md, np);
+  bsfit__refit_fillets(s, p, md, np);
   for (i = 0; i < np; i++) {
     if (p[i].kind == LINE) set_line_ends(&p[i], &md[i]);
     if (p[i].kind == ARC) set_arc_sweep(&p[i], &md[i], 0);

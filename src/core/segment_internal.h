@@ -1,8 +1,9 @@
 /*
 ** segment_internal.h
 ** What the segmentation's files share (segment.c: runs, cover, joins, pieces;
-** segment_evidence.c: the evidence of corners): the section worked on, a side model of
-** either kind and their small accessors. Not part of the public API.
+** segment_evidence.c: the evidence of corners; segment_fillets.c: fillets between lines):
+** the section worked on, a side model of either kind and their small accessors. Not part
+** of the public API.
 */
 #ifndef BSFIT_SEGMENT_INTERNAL_H
 #define BSFIT_SEGMENT_INTERNAL_H
@@ -64,5 +65,17 @@ static inline double model_dist(const model *md, const double *x) {
 ** next to their corner than their two models, in units of sigma^2 */
 double bsfit__join_evidence(const section *s, const bsfit_piece *A, const model *ma,
                             const bsfit_piece *B, const model *mb, double sigma);
+
+/* segment.c: refits p's model md to its samples, and sets p's max, rms (and centre,
+** radius for arcs) */
+void bsfit__segment_refit(const section *s, bsfit_piece *p, model *md);
+
+/* segment.c: the model's foot point f of x and its unit tangent t there (along the
+** traversal) */
+void bsfit__model_foot(const model *md, const double *x, double *f, double *t);
+
+/* segment_fillets.c: each arc between two lines it meets tangentially is refitted with its
+** circle tangent to both; under noise it first takes their samples past its tangent points */
+void bsfit__refit_fillets(const section *s, bsfit_piece *p, model *md, size_t np);
 
 #endif
