@@ -319,6 +319,18 @@ end
 local EVIDENCE, EVIDENCE_STEEP, STEEP, MIN_TURN, AGREE = 25, 14, 60, 15, 1.25
 local NOISY_MAX = 500 -- larger noisy sections keep the smooth path (the noise search costs m r)
 
+-- Two lines whose models do not meet between them (a free piece of no samples joins them)
+-- are one side split where a sample lies past the tolerance, or a side too short to hold a
+-- sample of its own: when their directions agree within MIN_TURN the free piece, a short
+-- Hermite step, is their join. Elsewhere such a gap means a model took samples of its
+-- neighbour (a line on the first samples of an arc; the smooth path does better).
+local function continues(pieces, i)
+  local a, b = pieces[(i - 2) % #pieces + 1], pieces[i % #pieces + 1]
+  if a.kind ~= "line" or b.kind ~= "line" then return false end
+  local c = a.t_end[1] * b.t_start[1] + a.t_end[2] * b.t_start[2]
+  return c >= math.cos(math.rad(MIN_TURN))
+end
+
 local function noisy_pieces(P, ctx)
   if not (ctx.sigma > 0) then return nil, "no noise" end
   local s = common.ok("noise of the pieces", bs.geom.segment_sigma(P, { closed = closed(ctx),
@@ -332,7 +344,7 @@ local function noisy_pieces(P, ctx)
   local held, weak, strong = 0, {}, 0
   for i, p in ipairs(pieces) do
     if p.kind ~= "free" then held = held + p.count end
-    if p.kind == "free" and p.count == 0 then return nil, "bridge" end -- two models that do not meet
+    if p.kind == "free" and p.count == 0 and not continues(pieces, i) then return nil, "bridge" end
     if p.join == "corner" then
       if p.turn < MIN_TURN or p.evidence < (p.turn >= STEEP and EVIDENCE_STEEP or EVIDENCE) then
         weak[#weak + 1] = i
