@@ -43,6 +43,7 @@ local bs = require "bsfit"
 local common = require "bsfit.strategy.common"
 local sharp = require "bsfit.strategy.sharp"
 local anchors = require "bsfit.strategy.anchors"
+local noisy = require "bsfit.strategy.noisy_pieces"
 
 local M = { name = "auto" }
 
@@ -302,89 +303,10 @@ end
 -- Lines, arcs and free runs (bs.geom.segment), when lines and arcs explain the section:
 --   exact data: runs of 3 samples collinear, or 4 concyclic, to 1e-10 of the size,
 --     holding half the samples (this does not happen by chance under noise);
---   noisy data: the noise read off the lines' and arcs' own residuals
---     (bs.geom.segment_sigma) is not above the window estimate (ctx.sigma) by more than
---     a factor 1.6 (where it is, windows explain the samples better than lines and arcs:
---     a smooth curve; where it is far below, the samples are too sparse for windows),
---     lines and arcs hold 90% of the samples, no two lines meet tangentially (a polygon
---     drawn along a smooth curve), and every corner turns by 15 degrees at least and is
---     worth 25 sigma^2 over one smooth curve through both its sides (EVIDENCE).
+--   noisy data: when the tests of bsfit.strategy.noisy_pieces pass (the noise read off
+--     the pieces agrees with the windows', the pieces hold the samples and meet, their
+--     corners are confirmed, their one curve stays within the noise).
 -- Returns the pieces, or {} (one smooth curve).
--- The evidence of a corner (how much worse one smooth curve through both its sides explains
--- their samples, in sigma^2) is, without a corner, about chi-square with the two models'
--- one or two more parameters: above 14 one time in a thousand. The estimate of sigma from
--- a few sides may be low by a factor sqrt(2), hence 25; a corner that turns by 60 degrees
--- or more is not what a smooth curve sampled this sparsely does between two samples (a
--- star's valley turns less at each sample), and 14 suffices (EVIDENCE_STEEP).
-local EVIDENCE, EVIDENCE_STEEP, STEEP, MIN_TURN, AGREE = 25, 14, 60, 15, 1.25
-local NOISY_MAX = 500 -- larger noisy sections keep the smooth path (the noise search costs m r)
-
--- Two lines whose models do not meet between them (a free piece of no samples joins them)
--- are one side split where a sample lies past the tolerance, or a side too short to hold a
--- sample of its own: when their directions agree within MIN_TURN the free piece, a short
--- Hermite step, is their join. Elsewhere such a gap means a model took samples of its
--- neighbour (a line on the first samples of an arc; the smooth path does better).
-local function continues(pieces, i)
-  local a, b = pieces[(i - 2) % #pieces + 1], pieces[i % #pieces + 1]
-  if a.kind ~= "line" or b.kind ~= "line" then return false end
-  local c = a.t_end[1] * b.t_start[1] + a.t_end[2] * b.t_start[2]
-  return c >= math.cos(math.rad(MIN_TURN))
-end
-
-local function noisy_pieces(P, ctx)
-  if not (ctx.sigma > 0) then return nil, "no noise" end
-  local s = common.ok("noise of the pieces", bs.geom.segment_sigma(P, { closed = closed(ctx),
-                                                                      max = AGREE * ctx.sigma }))
-  if not (s > 0 and s < AGREE * ctx.sigma) then return nil, ("noise of the pieces %.3g, of windows %.3g"):format(s, ctx.sigma) end
-  local pieces = common.ok("segmentation", bs.geom.segment(P, { closed = closed(ctx), sigma = s }))
-  -- one piece round a noisy section (a circle within the noise, a mesh's slice of a vase):
-  -- the smooth curve follows it as well, and stays polynomial
-  if #pieces < 2 then return nil, "one piece" end
-  ctx.sharp_candidate = { pieces = pieces, sigma = s } -- for the loops step, if need be
-  local held, weak, strong = 0, {}, 0
-  for i, p in ipairs(pieces) do
-    if p.kind ~= "free" then held = held + p.count end
-    if p.kind == "free" and p.count == 0 and not continues(pieces, i) then return nil, "bridge" end
-    if p.join == "corner" then
-      if p.turn < MIN_TURN or p.evidence < (p.turn >= STEEP and EVIDENCE_STEEP or EVIDENCE) then
-        weak[#weak + 1] = i
-      else
-        strong = strong + 1
-      end
-    end
-    local q = pieces[(i - 2) % #pieces + 1]
-    if p.join == "tangent" and p.kind == "line" and q.kind == "line" and #pieces > 1 then return nil, "tangent lines" end
-  end
-  if held < 0.9 * #P then return nil, ("held %d of %d"):format(held, #P) end
-  -- corners the data do not confirm: where others are (a made object), each is softened
-  -- into a bend (sharp.soften); where none is, the section is a smooth curve
-  if #weak > 0 and strong == 0 then
-    local p = pieces[weak[1]]
-    return nil, ("weak corner %d: turn %.3g evidence %.3g"):format(weak[1], p.turn, p.evidence)
-  end
-  for k = #weak, 1, -1 do
-    local soft = sharp.soften(P, pieces, weak[k])
-    if not soft then
-      local p = pieces[weak[k]]
-      return nil, ("weak corner %d: turn %.3g evidence %.3g"):format(weak[k], p.turn, p.evidence)
-    end
-    pieces = soft
-  end
-  local bad = sharp.degenerate(pieces) or sharp.far_corner(P, pieces)
-  if bad then return nil, bad end
-  -- the curve itself must stay within the noise of every sample (6 sigma)
-  local C = sharp.assemble(P, pieces, { closed = closed(ctx), sigma = s })
-  local d = sharp.distances(C, P, pieces)
-  if d:max() > 6 * s then return nil, ("curve %.3g sigma from a sample"):format(d:max() / s) end
-  -- pieces that cross (a short noisy side read as an arc bulging over its neighbour) are
-  -- no better than the smooth path, which the loops step can still repair
-  if closed(ctx) and bs.geom.self_intersections(C, math.max(2000, 32 * C:distinct())) > 0 then
-    return nil, "the pieces' curve crosses itself"
-  end
-  ctx.segment_sigma, ctx.sharp_curve = s, C
-  return pieces
-end
-
 function steps.segment(P, ctx)
   -- down-weighted points and Huber reweighting ask for a fit that discounts samples: the
   -- pieces follow every sample they hold, so such sections take the smooth path
@@ -398,9 +320,10 @@ function steps.segment(P, ctx)
   local pieces = ctx.cache.exact_pieces or
                  common.ok("segmentation", bs.geom.segment(P, { closed = closed(ctx) }))
   if sharp.has_features(pieces, #P) then ctx.segment_sigma = 0; return pieces end
-  if #P <= NOISY_MAX then
-    local pieces, why = noisy_pieces(P, ctx)
-    ctx.sharp_rejected = why
+  if #P <= noisy.MAX then
+    local pieces, why, found = noisy.find(P, ctx.sigma, closed(ctx))
+    ctx.sharp_rejected, ctx.sharp_candidate = why, found.candidate -- for the loops step
+    if pieces then ctx.segment_sigma, ctx.sharp_curve = found.sigma, found.curve end
     return pieces or {}
   end
   return {}

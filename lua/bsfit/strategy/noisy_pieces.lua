@@ -1,0 +1,140 @@
+-- lua/bsfit/strategy/noisy_pieces.lua
+-- When the lines, arcs and free runs of a noisy section are used instead of one smooth
+-- curve (the `auto` strategy's `segment` step; docs/auto.md, "When the pieces are used"):
+--
+--   local noisy = require "bsfit.strategy.noisy_pieces"
+--   local pieces, why, found = noisy.find(P, sigma, closed)
+--
+-- sigma is the window estimate of the noise (bs.geom.noise_sigma). pieces is nil when the
+-- section is a smooth curve, why then says which test refused it (rep.pieces_rejected);
+-- found.sigma is the noise read off the pieces, found.curve their one curve, and
+-- found.candidate the segmentation before the tests (the loops step falls back on it).
+--
+-- The tests, in order:
+--   - the noise read off the lines' and arcs' own residuals (bs.geom.segment_sigma) is
+--     below AGREE times the window estimate (where it is above, windows explain the samples
+--     better than lines and arcs: a smooth curve; where it is far below, the samples are
+--     too sparse for windows);
+--   - two pieces or more; lines and arcs hold 90% of the samples; every two models meet
+--     (a bridge is allowed only between two lines that continue each other); no two
+--     lines meet tangentially (a polygon drawn along a smooth curve);
+--   - every corner turns by MIN_TURN degrees at least and is worth EVIDENCE sigma^2 over
+--     one smooth curve through both its sides; weak corners among strong ones are softened
+--     into bends (sharp.soften), a section of weak corners only is a smooth curve;
+--   - no piece degenerate, no corner farther from its samples than the longest step;
+--   - the one curve stays within 6 sigma of every sample and does not cross itself.
+-- The evidence of a corner (how much worse one smooth curve through both its sides explains
+-- their samples, in sigma^2) is, without a corner, about chi-square with the two models'
+-- one or two more parameters: above 14 one time in a thousand. The estimate of sigma from
+-- a few sides may be low by a factor sqrt(2), hence 25; a corner that turns by 60 degrees
+-- or more is not what a smooth curve sampled this sparsely does between two samples (a
+-- star's valley turns less at each sample), and 14 suffices (EVIDENCE_STEEP).
+
+local bs = require "bsfit"
+local common = require "bsfit.strategy.common"
+local sharp = require "bsfit.strategy.sharp"
+
+local M = {}
+
+local EVIDENCE, EVIDENCE_STEEP, STEEP, MIN_TURN, AGREE = 25, 14, 60, 15, 1.25
+M.MAX = 500 -- larger noisy sections keep the smooth path (the noise search costs m r)
+
+-- the noise read off the pieces, when it agrees with the windows'
+local function noise_of_pieces(P, sigma, closed)
+  if not (sigma > 0) then return nil, "no noise" end
+  local s = common.ok("noise of the pieces",
+                      bs.geom.segment_sigma(P, { closed = closed, max = AGREE * sigma }))
+  if not (s > 0 and s < AGREE * sigma) then
+    return nil, ("noise of the pieces %.3g, of windows %.3g"):format(s, sigma)
+  end
+  return s
+end
+
+-- Two lines whose models do not meet between them (a free piece of no samples joins them)
+-- are one side split where a sample lies past the tolerance, or a side too short to hold a
+-- sample of its own: when their directions agree within MIN_TURN the free piece, a short
+-- Hermite step, is their join. Elsewhere such a gap means a model took samples of its
+-- neighbour (a line on the first samples of an arc; the smooth path does better).
+local function continues(pieces, i)
+  local a, b = pieces[(i - 2) % #pieces + 1], pieces[i % #pieces + 1]
+  if a.kind ~= "line" or b.kind ~= "line" then return false end
+  local c = a.t_end[1] * b.t_start[1] + a.t_end[2] * b.t_start[2]
+  return c >= math.cos(math.rad(MIN_TURN))
+end
+
+local function weak_corner(p)
+  return p.turn < MIN_TURN or p.evidence < (p.turn >= STEEP and EVIDENCE_STEEP or EVIDENCE)
+end
+
+local function weak_message(pieces, i)
+  return ("weak corner %d: turn %.3g evidence %.3g"):format(i, pieces[i].turn, pieces[i].evidence)
+end
+
+-- What the pieces hold and how they meet: the indices of the weak corners, or nil and why
+local function screen(P, pieces)
+  local held, weak, strong = 0, {}, 0
+  for i, p in ipairs(pieces) do
+    local q = pieces[(i - 2) % #pieces + 1]
+    if p.kind ~= "free" then held = held + p.count end
+    if p.kind == "free" and p.count == 0 and not continues(pieces, i) then return nil, "bridge" end
+    if p.join == "corner" then
+      if weak_corner(p) then weak[#weak + 1] = i else strong = strong + 1 end
+    end
+    if p.join == "tangent" and p.kind == "line" and q.kind == "line" then
+      return nil, "tangent lines"
+    end
+  end
+  if held < 0.9 * #P then return nil, ("held %d of %d"):format(held, #P) end
+  -- corners the data do not confirm: where others are (a made object), each is softened
+  -- into a bend (below); where none is, the section is a smooth curve
+  if #weak > 0 and strong == 0 then return nil, weak_message(pieces, weak[1]) end
+  return weak
+end
+
+-- the pieces with each weak corner softened into a bend (sharp.soften), or nil and why
+local function soften(P, pieces, weak)
+  for k = #weak, 1, -1 do
+    local soft = sharp.soften(P, pieces, weak[k])
+    if not soft then return nil, weak_message(pieces, weak[k]) end
+    pieces = soft
+  end
+  return pieces
+end
+
+-- The one curve of the pieces, or nil and why: it must stay within the noise of every
+-- sample (6 sigma), and pieces that cross (a short noisy side read as an arc bulging over
+-- its neighbour) are no better than the smooth path, which the loops step can still repair.
+local function curve_within_noise(P, pieces, s, closed)
+  local C = sharp.assemble(P, pieces, { closed = closed, sigma = s })
+  local d = sharp.distances(C, P, pieces)
+  if d:max() > 6 * s then return nil, ("curve %.3g sigma from a sample"):format(d:max() / s) end
+  if closed and bs.geom.self_intersections(C, math.max(2000, 32 * C:distinct())) > 0 then
+    return nil, "the pieces' curve crosses itself"
+  end
+  return C
+end
+
+function M.find(P, sigma, closed)
+  local found = {}
+  local s, why = noise_of_pieces(P, sigma, closed)
+  if not s then return nil, why, found end
+  local pieces = common.ok("segmentation", bs.geom.segment(P, { closed = closed, sigma = s }))
+  -- one piece round a noisy section (a circle within the noise, a mesh's slice of a vase):
+  -- the smooth curve follows it as well, and stays polynomial
+  if #pieces < 2 then return nil, "one piece", found end
+  found.candidate = { pieces = pieces, sigma = s }
+  local weak
+  weak, why = screen(P, pieces)
+  if not weak then return nil, why, found end
+  pieces, why = soften(P, pieces, weak)
+  if not pieces then return nil, why, found end
+  why = sharp.degenerate(pieces) or sharp.far_corner(P, pieces)
+  if why then return nil, why, found end
+  local C
+  C, why = curve_within_noise(P, pieces, s, closed)
+  if not C then return nil, why, found end
+  found.sigma, found.curve = s, C
+  return pieces, nil, found
+end
+
+return M
