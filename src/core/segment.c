@@ -4,10 +4,21 @@
 ** free-form runs (bsfit_features.h): the maximal runs each model explains, the cover
 ** of least cost (dynamic programming), and where consecutive pieces meet.
 */
+#include <float.h>
 #include <math.h>
 #include <string.h>
 
 #include "segment_internal.h"
+
+/* Whether a circle's distances are computed to far better than tol: their rounding is
+** about DBL_EPSILON r, and an exact line's samples, collinear to rounding, fit circles of
+** radius 1e12 whose distances are noise (they took in the next sides of a gear, 7% of its
+** size off, once short dense arcs could be fitted). (A rule that the run must bow away
+** from its chord by more than tol was tried too: it lost 4 noisy sections of 390 to the
+** smooth path, the arcs of sparse noisy D shapes among them.) */
+static int arc_resolved(const section *s, const bsfit__circle *C) {
+  return 16.0 * DBL_EPSILON * C->r <= s->tol;
+}
 
 /* fits a model of `kind` to n samples from `first`; its largest distance (HUGE_VAL
 ** when it cannot be fitted) */
@@ -48,6 +59,7 @@ static double fit_model_from(const section *s, int kind, size_t first, size_t n,
     turn += ax * by - ay * bx;
   }
   md->orient = turn >= 0 ? 1.0 : -1.0;
+  if (!arc_resolved(s, &md->circle)) return HUGE_VAL;
   return bsfit__circle_max(&md->circle, &r, rms);
 }
 
