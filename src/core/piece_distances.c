@@ -34,6 +34,7 @@ typedef struct span_tree {
   size_t d;
   double *box;   /* per node: d lows, then d highs; an empty node: low > high */
   unsigned char *straight; /* per span: its control points lie on a line */
+  double *circle;          /* per span: centre and radius of the circle it lies on (r 0: none) */
 } span_tree;
 
 /* The box of span s's control points into b (lows, highs): the whole space when a weight
@@ -65,6 +66,74 @@ static void span_box(const bsfit_curve *c, size_t s, double tol, double *b, unsi
   }
 }
 
+/* {====================================================================
+** Spans on a circle (the arcs of the pieces: rational Bezier spans)
+** ===================================================================== */
+
+#define ARC_MAXDEG 7
+
+static double choose(int n, int k) {
+  double b = 1.0;
+  int i;
+  for (i = 1; i <= k; i++) b = b * (double)(n - k + i) / (double)i;
+  return b;
+}
+
+/* the circle through a, b, c: 0 when they are (nearly) collinear */
+static int circle_through(const double *a, const double *b, const double *c, double *circ) {
+  double bx = b[0] - a[0], by = b[1] - a[1], cx = c[0] - a[0], cy = c[1] - a[1];
+  double D = 2.0 * (bx * cy - by * cx), b2 = bx * bx + by * by, c2 = cx * cx + cy * cy, ux, uy;
+  if (!(fabs(D) > 1e-10 * sqrt(b2 * c2))) return 0;
+  ux = (cy * b2 - by * c2) / D;
+  uy = (bx * c2 - cx * b2) / D;
+  circ[0] = a[0] + ux, circ[1] = a[1] + uy, circ[2] = sqrt(ux * ux + uy * uy);
+  return 1;
+}
+
+/* Whether span s, a Bezier span of a 2D curve (its ends knots of multiplicity p), lies
+** within tol of a circle: the one through its ends and middle. With weights w_i > 0 and
+** points P_i, F(t) = w(t)^2 (|X(t) - c|^2 - r^2) is a polynomial of degree 2p whose
+** Bernstein coefficients are sums of w_i w_j ((P_i - c).(P_j - c) - r^2); |F| is at most
+** their largest, and a point of the span lies |F| / (w^2 (|X - c| + r)) <= max / (w_min^2 r)
+** from the circle. Sets circ (centre, radius) and returns 1 when that is within tol. */
+static int span_circle(const bsfit_curve *c, size_t s, double tol, double *circ) {
+  int p = c->degree, i, j, k;
+  const double *U = c->knots, *Q = c->ctrl + (s - (size_t)p) * 2;
+  const double *W = c->weights ? c->weights + (s - (size_t)p) : NULL;
+  double w[ARC_MAXDEG + 1], h[3] = {0, 0, 0}, mid[2], wmin = INFINITY, big = 0.0;
+  if (c->dim != 2 || p < 2 || p > ARC_MAXDEG || U[s - (size_t)p + 1] != U[s] ||
+      U[s + (size_t)p] != U[s + 1])
+    return 0;
+  for (i = 0; i <= p; i++) {
+    double b = choose(p, i);
+    w[i] = W ? W[i] : 1.0;
+    wmin = fmin(wmin, w[i]);
+    h[0] += b * w[i] * Q[2 * i], h[1] += b * w[i] * Q[2 * i + 1], h[2] += b * w[i];
+  }
+  if (!(wmin > 0)) return 0;
+  mid[0] = h[0] / h[2], mid[1] = h[1] / h[2];
+  if (!circle_through(Q, mid, Q + 2 * p, circ)) return 0;
+  for (k = 0; k <= 2 * p; k++) {
+    double f = 0.0;
+    for (i = k - p > 0 ? k - p : 0; i <= p && i <= k; i++) {
+      j = k - i;
+      f += choose(p, i) * choose(p, j) * w[i] * w[j] *
+           ((Q[2 * i] - circ[0]) * (Q[2 * j] - circ[0]) +
+            (Q[2 * i + 1] - circ[1]) * (Q[2 * j + 1] - circ[1]) - circ[2] * circ[2]);
+    }
+    big = fmax(big, fabs(f) / choose(2 * p, k));
+  }
+  return big / (wmin * wmin * circ[2]) <= tol;
+}
+
+/* The distance from P to span s's circle. */
+static double circle_dist(const double *circ, const double *P) {
+  double dx = P[0] - circ[0], dy = P[1] - circ[1];
+  return fabs(sqrt(dx * dx + dy * dy) - circ[2]);
+}
+
+/* }==================================================================== */
+
 static void box_union(double *to, const double *a, const double *b, size_t d) {
   size_t q;
   for (q = 0; q < d; q++) to[q] = fmin(a[q], b[q]), to[d + q] = fmax(a[d + q], b[d + q]);
@@ -86,15 +155,19 @@ static bsfit_err tree_build(span_tree *T, const bsfit_curve *c, double tol,
   size_t p = (size_t)c->degree, ns = c->n - p, d = (size_t)c->dim, k, q;
   T->d = d;
   for (T->leaves = 1; T->leaves < ns; T->leaves *= 2) {}
-  T->box = bsfit__alloc(a, bsfit__mulsize(2 * T->leaves, 2 * d * sizeof(double) + 1));
+  T->box = bsfit__alloc(a, bsfit__mulsize(2 * T->leaves, (2 * d + 3) * sizeof(double) + 1));
   if (T->box == NULL) return BSFIT_ENOMEM;
-  T->straight = (unsigned char *)(T->box + 2 * T->leaves * 2 * d);
+  T->circle = T->box + 2 * T->leaves * 2 * d;
+  T->straight = (unsigned char *)(T->circle + 2 * T->leaves * 3);
   for (k = 0; k < T->leaves; k++) {
     double *b = T->box + (T->leaves + k) * 2 * d;
     T->straight[k] = 0;
-    if (k < ns && c->knots[p + k + 1] > c->knots[p + k])
+    T->circle[3 * k + 2] = 0.0;
+    if (k < ns && c->knots[p + k + 1] > c->knots[p + k]) {
       span_box(c, p + k, tol, b, &T->straight[k]);
-    else
+      if (!T->straight[k] && !span_circle(c, p + k, tol, T->circle + 3 * k))
+        T->circle[3 * k + 2] = 0.0;
+    } else
       for (q = 0; q < d; q++) b[q] = INFINITY, b[d + q] = -INFINITY; /* empty */
   }
   for (k = T->leaves - 1; k >= 1; k--)
@@ -103,7 +176,7 @@ static bsfit_err tree_build(span_tree *T, const bsfit_curve *c, double tol,
 }
 
 static void tree_free(span_tree *T, const bsfit_allocator *a) {
-  bsfit__free(a, T->box, 2 * T->leaves * (2 * T->d * sizeof(double) + 1));
+  bsfit__free(a, T->box, 2 * T->leaves * ((2 * T->d + 3) * sizeof(double) + 1));
 }
 
 /* Whether no span other than `own` (a leaf number) has its box within r of P. */
@@ -183,8 +256,8 @@ static size_t uncertified(const bsfit_curve *c, const span_tree *T, const double
     if (!(u[i] >= U[s] && u[i] < U[s + 1])) /* samples in order: mostly the last span */
       s = bsfit_knots_find_span(U, c->n, c->degree, u[i]);
     if ((i & 4095) == 4095 && bsfit__interrupted(a)) return SIZE_MAX;
-    if (T->straight[s - p]) {
-      double dl = line_dist(c, s, P);
+    if (T->straight[s - p] || T->circle[3 * (s - p) + 2] > 0) {
+      double dl = T->straight[s - p] ? line_dist(c, s, P) : circle_dist(T->circle + 3 * (s - p), P);
       if (dist[i] <= dl + tol && alone_within(T, s - p, P, dist[i] + tol)) {
         dist[i] = fmin(dist[i], dl);
         continue;

@@ -186,3 +186,40 @@ T.test("10^5 exact samples of a D shape far from the origin: exact pieces and cu
   check_segment(P, o, shapes.size(o), "D of 10^5 samples")
   check_auto(P, o, shapes.size(o), "D of 10^5 samples")
 end)
+
+-- The deviation report of the pieces' curve (bs.geom.piece_distances) certifies samples on
+-- arcs from their own span's circle, as it does on lines, without the global search
+-- (10^5 samples of a circle: 459 -> 73 ms). Points moved off the outline along its normal
+-- by up to 1e-2 of the size: their distances to the curve, which lies on the outline to
+-- 1e-9, are their exact distances to the outline.
+T.test("bs.geom.piece_distances on arcs: the exact distances of points off the outline", function()
+  local uniform = shapes.rng(11)
+  for ni, name in ipairs(NAMES) do
+    for _, k in ipairs { 1, 2, 3 } do
+      local o = place(name, k)
+      local size = shapes.size(o)
+      local total = 0
+      for _, q in ipairs(o.prims) do total = total + shapes.length(q) end
+      local P, Q = {}, {}
+      for _, q in ipairs(o.prims) do
+        local n = math.max(8, math.floor(3000 * shapes.length(q) / total))
+        for j = 1, n do
+          local f = (j - 0.5) / n
+          local x, t = shapes.at(q, f), shapes.tangent(q, f)
+          local d = (2 * uniform() - 1) * 1e-2 * size
+          P[#P + 1] = x
+          Q[#Q + 1] = { x[1] - d * t[2], x[2] + d * t[1] }
+        end
+      end
+      local C, rep = auto.run(bs.points.new(P))
+      local what = ("%s (%d), size %.3g"):format(name, ni, size)
+      T.ok(rep.pieces ~= nil, what .. ": through the pieces")
+      local d = bs.geom.piece_distances(C, bs.points.new(Q), rep.pieces, 8)
+      local worst = 0
+      for i = 1, #Q do
+        worst = math.max(worst, math.abs(d:get(i) - shapes.distance(o, Q[i][1], Q[i][2])))
+      end
+      T.ok(worst <= 1e-9 * size, ("%s: distances off by %g of the size"):format(what, worst / size))
+    end
+  end
+end)
