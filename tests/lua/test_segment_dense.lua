@@ -82,7 +82,8 @@ end
 -- join may leave an empty free bridge, which holds no sample), every arc on a true circle
 -- (centre and radius to 1e-9), every line's ends on the outline, a corner join at each
 -- true corner and nowhere else
-local function check_segment(P, o, size, what)
+local function check_segment(P, o, size, what, lim)
+  lim = lim or 1e-9 * size
   local pieces = bs.geom.segment(P, { closed = true })
   local want, got = kinds(o), { line = 0, arc = 0, free = 0 }
   local corners = {}
@@ -93,12 +94,12 @@ local function check_segment(P, o, size, what)
     got[p.kind] = got[p.kind] + 1
     if p.kind == "arc" then
       local tr, off = true_arc(o, p.centre)
-      T.ok(tr and off <= 1e-9 * size and math.abs(p.radius - tr.r) <= 1e-9 * tr.r,
+      T.ok(tr and off <= lim and math.abs(p.radius - tr.r) <= math.max(1e-9 * tr.r, lim),
            ("%s: arc %d radius %.17g centre off by %g of the size"):format(what, i, p.radius, off / size))
     elseif p.kind == "line" then
       for _, x in ipairs { p.start, p["end"] } do
         local d = shapes.distance(o, x[1], x[2])
-        T.ok(d <= 1e-9 * size, ("%s: line %d ends %g of the size off the outline"):format(what, i, d / size))
+        T.ok(d <= lim, ("%s: line %d ends %g of the size off the outline"):format(what, i, d / size))
       end
     end
     if p.join == "corner" then corners[#corners + 1] = p.start end
@@ -109,18 +110,19 @@ local function check_segment(P, o, size, what)
   for _, v in ipairs(o.corners) do
     local best = math.huge
     for _, x in ipairs(corners) do best = math.min(best, dist(v, x)) end
-    T.ok(best <= 1e-9 * size, ("%s: corner missed by %g of the size"):format(what, best / size))
+    T.ok(best <= lim, ("%s: corner missed by %g of the size"):format(what, best / size))
   end
 end
 
 -- auto's curve: through the pieces, within 1e-9 of the size of the true outline both ways
 -- (the curve sampled densely against the exact outline, and the outline against the curve)
-local function check_auto(P, o, size, what)
+local function check_auto(P, o, size, what, lim)
+  lim = lim or 1e-9 * size
   local C, rep = auto.run(P)
   T.ok(rep.pieces ~= nil, what .. ": auto took the pieces")
   local h = shapes.hausdorff(bs, C, o, 6000, 200)
-  T.ok(h <= 1e-9 * size, ("%s: auto's curve %g of the size from the outline"):format(what, h / size))
-  T.ok(rep.max <= 1e-9 * size, ("%s: rep.max %g of the size"):format(what, rep.max / size))
+  T.ok(h <= lim, ("%s: auto's curve %g of the size from the outline"):format(what, h / size))
+  T.ok(rep.max <= lim, ("%s: rep.max %g of the size"):format(what, rep.max / size))
 end
 
 -- }======================================================================
@@ -185,6 +187,51 @@ T.test("10^5 exact samples of a D shape far from the origin: exact pieces and cu
   local P = bs.points.new(sampled(o, 100000, true, 5))
   check_segment(P, o, shapes.size(o), "D of 10^5 samples")
   check_auto(P, o, shapes.size(o), "D of 10^5 samples")
+end)
+
+-- Sections 10^6 and 3 10^6 times their size away from the origin: their coordinates are
+-- rounded to 1.1e-16 of their magnitude, 1e-10 of the size and more, so the exact
+-- tolerance (1e-10 of the size) has a floor of some 8 units of the coordinates' last
+-- place; with it the pieces are still exact to what the coordinates hold (without it a D
+-- of size 1e-2 at (1e4, -1e4) had its arc cut into arcs and free runs, 1.3e-9 of its size
+-- off, and at (1e5, -1e5) auto raised: its pieces met 1 unit of the last place apart, which
+-- bs.curve.join refused). Held to 64 units of the coordinates' last place.
+T.test("dense exact sections far from the origin: exact to the rounding of their coordinates", function()
+  for ni, name in ipairs(NAMES) do
+    for _, far in ipairs { 1e4, 3e4 } do
+      for _, m in ipairs { 1000, 10000 } do
+        local o = placed(SHAPES[name], 1e-2 / shapes.size(SHAPES[name]), far, -far)
+        local size = shapes.size(o)
+        local P = bs.points.new(sampled(o, m, m > 1000, ni))
+        local lim = math.max(1e-9 * size, 64 * 2.220446049250313e-16 * 2 * far)
+        local what = ("%s, %d samples, size %.3g at (%g, %g)"):format(name, #P, size, far, -far)
+        check_segment(P, o, size, what, lim)
+        check_auto(P, o, size, what, lim)
+      end
+    end
+  end
+end)
+
+-- bs.curve.join of parts 10^7 times their size from the origin whose ends differ in the
+-- last place of their coordinates: joined (it raised, 1e-9 of their size being less than
+-- a unit of that place), and parts a true gap apart still refused.
+T.test("bs.curve.join far from the origin: ends within the rounding of their coordinates", function()
+  local far, eps = 1e5, 2.220446049250313e-16
+  for k = 1, 8 do
+    local ulp = far * eps * 2 ^ (k % 3) -- 1, 2 and 4 units of the last place of 1e5 or so
+    local a, b = { far, -far }, { far + 1e-2, -far }
+    local c = { b[1] + ulp, b[2] - ulp }
+    local J = bs.curve.join({ bs.curve.line(a, b), bs.curve.line(c, { far + 1e-2, -far + 1e-2 }) },
+                            { 1e-2, 1e-2 })
+    local x, y = J:eval(1)
+    T.near(x, far + 1e-2, 1e-15, "joined: end x")
+    T.near(y, -far + 1e-2, 1e-15, "joined: end y")
+  end
+  T.raises({ match = "starts" }, function()
+    bs.curve.join({ bs.curve.line({ far, -far }, { far + 1e-2, -far }),
+                    bs.curve.line({ far + 1e-2, -far + 1e-7 }, { far + 1e-2, -far + 1e-2 }) },
+                  { 1e-2, 1e-2 })
+  end)
 end)
 
 -- The deviation report of the pieces' curve (bs.geom.piece_distances) certifies samples on
