@@ -26,7 +26,8 @@ local function placed(o, k, dx, dy)
     if q.kind == "line" then
       out.prims[#out.prims + 1] = { kind = "line", a = pt(q.a), b = pt(q.b) }
     else
-      out.prims[#out.prims + 1] = { kind = "arc", c = pt(q.c), r = k * q.r, a0 = q.a0, sweep = q.sweep }
+      out.prims[#out.prims + 1] = { kind = "arc", c = pt(q.c), r = k * q.r, a0 = q.a0,
+                                    sweep = q.sweep }
     end
   end
   for _, v in ipairs(o.corners) do out.corners[#out.corners + 1] = pt(v) end
@@ -38,7 +39,8 @@ end
 local function circle(c, r)
   local prims = {}
   for k = 0, 3 do
-    prims[#prims + 1] = { kind = "arc", c = c, r = r, a0 = 0.3 + k * math.pi / 2, sweep = math.pi / 2 }
+    prims[#prims + 1] = { kind = "arc", c = c, r = r, a0 = 0.3 + k * math.pi / 2,
+                          sweep = math.pi / 2 }
   end
   return { prims = prims, corners = {} }
 end
@@ -48,7 +50,8 @@ local function kinds(o)
   local want, n = { line = 0, arc = 0 }, #o.prims
   for i, q in ipairs(o.prims) do
     local p = o.prims[(i - 2) % n + 1]
-    local same = n > 1 and q.kind == "arc" and p.kind == "arc" and p.r == q.r and dist(p.c, q.c) == 0
+    local same = n > 1 and q.kind == "arc" and p.kind == "arc" and p.r == q.r
+                 and dist(p.c, q.c) == 0
     if not same then want[q.kind] = want[q.kind] + 1 end
   end
   if want.line == 0 and want.arc == 0 then want.arc = 1 end
@@ -95,11 +98,13 @@ local function check_segment(P, o, size, what, lim)
     if p.kind == "arc" then
       local tr, off = true_arc(o, p.centre)
       T.ok(tr and off <= lim and math.abs(p.radius - tr.r) <= math.max(1e-9 * tr.r, lim),
-           ("%s: arc %d radius %.17g centre off by %g of the size"):format(what, i, p.radius, off / size))
+           ("%s: arc %d radius %.17g centre off by %g of the size"):format(what, i, p.radius,
+                                                                             off / size))
     elseif p.kind == "line" then
       for _, x in ipairs { p.start, p["end"] } do
         local d = shapes.distance(o, x[1], x[2])
-        T.ok(d <= lim, ("%s: line %d ends %g of the size off the outline"):format(what, i, d / size))
+        T.ok(d <= lim, ("%s: line %d ends %g of the size off the outline"):format(what, i,
+                                                                                  d / size))
       end
     end
     if p.join == "corner" then corners[#corners + 1] = p.start end
