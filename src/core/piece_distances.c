@@ -43,6 +43,7 @@ typedef struct span_tree {
   double *circle;          /* per span: centre and radius of the circle it lies on (r 0: none) */
   unsigned char *minor;    /* per span on a circle: it runs along the minor arc of its ends */
   size_t arcs;             /* how many spans do */
+  double tol;              /* how near their line or circle the straight and circular spans lie */
 } span_tree;
 
 /* The box of span s's control points into b (lows, highs): the whole space when a weight
@@ -183,6 +184,7 @@ static bsfit_err tree_build(span_tree *T, const bsfit_curve *c, double tol,
   T->straight = (unsigned char *)(T->circle + 2 * T->leaves * 3);
   T->minor = T->straight + 2 * T->leaves;
   T->arcs = 0;
+  T->tol = tol;
   for (k = 0; k < T->leaves; k++) {
     double *b = T->box + (T->leaves + k) * 2 * d;
     T->straight[k] = T->minor[k] = 0;
@@ -214,7 +216,10 @@ static int alone_within(const span_tree *T, size_t own, const double *P, double 
     const double *b = T->box + k * 2 * d;
     if (b[0] > b[d] || box_dist2(b, P, d) > r2) continue; /* empty, or too far */
     if (k >= T->leaves) {
-      if (k - T->leaves != own) return 0;
+      /* a span on a circle lies within tol of it: no nearer to P than its circle, less tol
+      ** (a D's line lies in the box of its arc's quarters, not near their circle) */
+      const double *circ = T->circle + 3 * (k - T->leaves);
+      if (k - T->leaves != own && !(circ[2] > 0 && circle_dist(circ, P) - T->tol > r)) return 0;
       continue;
     }
     stack[top++] = 2 * k;
