@@ -61,7 +61,9 @@ typedef struct bsfit_segment_opts {
 ** Each sample belongs to one piece (or, at a corner or tangent point that was sampled,
 ** to the two pieces meeting there). A run of samples is a line (an arc) when every one
 ** of them lies within tol = max(tol_sigma * sigma, exact * size) of its total
-** least-squares line (geometric circle fit), size the bounding-box diagonal. The cover
+** least-squares line (geometric circle fit), size the bounding-box diagonal; tol is at
+** least 16 DBL_EPSILON times the largest coordinate (the rounding of exact samples far
+** from the origin, 10^4 times their size and more). The cover
 ** of the section is the one of least cost by dynamic programming: 2 per line (its
 ** parameters), 3 per arc, 1 per free sample plus 1 per free run, so a line beats an arc
 ** and both beat free samples. On noisy data (sigma > 0, up to 2000 samples) a piece also
