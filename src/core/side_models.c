@@ -117,11 +117,11 @@ static int solve3(const double A[3][3], double *g) {
 ** samples of a circle of 10^4 spanned 2e-3 rad: 1e11, and its Cholesky refused them). So
 ** the step is taken in a frame of the arc: t and n across and along the centre's
 ** direction to the middle sample, the centre moved by a t + b n and the radius by s - b,
-** whose columns are (-u.t, 1 - u.n, -1) ~ (-phi, phi^2 / 2, -1): scaled to a unit diagonal
-** (solve3) they are well conditioned at any theta. Returns a bound on how much the step moves any
-** sample's residual, |a| max |u.t| + |b| max (1 - u.n) + |s| (on a short arc the centre
-** and radius drift together by far more than any distance changes), and its length in
-** *len; -1 when the normal matrix is singular. */
+** whose columns are (-u.t, 1 - u.n, -1) ~ (-phi, phi^2 / 2, -1): scaled to a unit
+** diagonal (solve3) they are well conditioned at any theta. Returns a bound on how much
+** the step moves any sample's residual, |a| max |u.t| + |b| max (1 - u.n) + |s| (on a
+** short arc the centre and radius drift together by far more than any distance changes),
+** and its length in *len; -1 when the normal matrix is singular. */
 static double gauss_newton_step(const bsfit__run *r, const double *o, double *c, double *rad,
                                 double *len) {
   double A[3][3] = {{0}}, g[3] = {0, 0, 0}, t[2], nn[2];
