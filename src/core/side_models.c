@@ -168,7 +168,8 @@ static double largest_radius(const bsfit__run *r) {
   return 1e6 * sqrt(fmax(bx * bx + by * by, zx * zx + zy * zy));
 }
 
-int bsfit__fit_circle(const bsfit__run *r, const bsfit__circle *init, double eps, bsfit__circle *C) {
+int bsfit__fit_circle(const bsfit__run *r, const bsfit__circle *init, double eps,
+                      bsfit__circle *C) {
   const double *o = bsfit__run_at(r, 0);
   double c[2], rad, moved, len = 0, rmax;
   int it;
