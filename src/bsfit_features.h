@@ -61,7 +61,9 @@ typedef struct bsfit_segment_opts {
 ** Each sample belongs to one piece (or, at a corner or tangent point that was sampled,
 ** to the two pieces meeting there). A run of samples is a line (an arc) when every one
 ** of them lies within tol = max(tol_sigma * sigma, exact * size) of its total
-** least-squares line (geometric circle fit), size the bounding-box diagonal. The cover
+** least-squares line (geometric circle fit), size the bounding-box diagonal; tol is at
+** least 16 DBL_EPSILON times the largest coordinate (the rounding of exact samples far
+** from the origin, 10^4 times their size and more). The cover
 ** of the section is the one of least cost by dynamic programming: 2 per line (its
 ** parameters), 3 per arc, 1 per free sample plus 1 per free run, so a line beats an arc
 ** and both beat free samples. On noisy data (sigma > 0, up to 2000 samples) a piece also
@@ -162,14 +164,18 @@ BSFIT_API bsfit_err bsfit_curve_self_intersections(const bsfit_curve *c, size_t 
 ** control points within that distance: then the smaller of the two distances), by the
 ** global search of bsfit_curve_closest_many: the nearer is its distance. Newton from
 ** inside its own piece never has to cross a corner, where a global start can stall. A
+** point whose start lies on a span of a circle (a rational arc, checked by the Bernstein
+** coefficients of its distance to the circle), whose foot on the circle lies on that span
+** and which no other span comes near, takes its distance to the circle without Newton. A
 ** certified distance is within 1e-14 of the largest control-point coordinate of the
 ** true one.
 ** @param[out] dist m distances.
-** Cost: iters evaluations and O(log spans) per point, plus bsfit_curve_closest_many for
-** the points not certified; scratch (dim + 3) m doubles and the spans' boxes through a.
+** Cost: iters evaluations and O(log spans) per point (none for those certified on arcs),
+** plus bsfit_curve_closest_many for the points not certified; scratch (2 dim + 7) m
+** doubles and the spans' boxes through a.
 ** @return BSFIT_OK, the codes of bsfit_curve_closest_many and bsfit_curve_project_many,
-**         BSFIT_EINVAL (NULL arrays, a piece's samples outside the m points),
-**         BSFIT_ENONFINITE (a range), BSFIT_ENOMEM. */
+**         BSFIT_EINVAL (NULL arrays, a piece's samples outside the m points, iters < 0),
+**         BSFIT_ENONFINITE (a range, a point), BSFIT_ENOMEM. */
 BSFIT_API bsfit_err bsfit_curve_piece_distances(const bsfit_curve *c, const double *pts, size_t m,
                                                 const size_t *first, const size_t *count,
                                                 const double *range, size_t np, int iters,

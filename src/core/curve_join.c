@@ -6,6 +6,7 @@
 */
 #include "internal.h"
 
+#include <float.h>
 #include <math.h>
 #include <string.h>
 
@@ -127,6 +128,17 @@ static double parts_size(const bsfit_curve *const *u, size_t n) {
   return sqrt(s);
 }
 
+/* How far apart the ends of consecutive parts may lie: 1e-9 of their size, and no less than
+** 64 units of the last place of their largest coordinate (parts far from the origin, 10^7
+** times their size, meet only to the rounding of their coordinates). */
+static double join_tol(const bsfit_curve *const *u, size_t n) {
+  double big = 0;
+  size_t i, k;
+  for (i = 0; i < n; i++)
+    for (k = 0; k < u[i]->n * (size_t)u[i]->dim; k++) big = fmax(big, fabs(u[i]->ctrl[k]));
+  return fmax(1e-9 * parts_size(u, n), 64.0 * DBL_EPSILON * big);
+}
+
 /* writes the joined curve into out (allocated by the caller for N points) */
 static void join_fill(const bsfit_curve *const *u, size_t n, const double *s, bsfit_curve *out) {
   size_t i, k, j = 0, kn = 0;
@@ -150,7 +162,7 @@ bsfit_err bsfit_curve_join(const bsfit_curve *const *parts, size_t n, const doub
                            bsfit_curve *out, const bsfit_allocator *al, bsfit_status *st) {
   bsfit_curve *tmp = NULL;
   const bsfit_curve **use = NULL;
-  double *s = NULL, total = 0, size;
+  double *s = NULL, total = 0, gap;
   size_t i, N = 0;
   int rational = 0, dim;
   bsfit_err e = BSFIT_OK;
@@ -177,9 +189,9 @@ bsfit_err bsfit_curve_join(const bsfit_curve *const *parts, size_t n, const doub
     }
   }
   if (e != BSFIT_OK) goto done;
-  size = parts_size(use, n);
+  gap = join_tol(use, n);
   for (i = 1; i < n; i++)
-    if (ends_apart(use[i - 1], use[i]) > 1e-9 * size) {
+    if (ends_apart(use[i - 1], use[i]) > gap) {
       e = bsfit__fail(st, BSFIT_EINVAL, "join: part %zu starts %g away from the end of part %zu",
                       i + 1, ends_apart(use[i - 1], use[i]), i);
       goto done;
@@ -191,7 +203,7 @@ bsfit_err bsfit_curve_join(const bsfit_curve *const *parts, size_t n, const doub
   if (e != BSFIT_OK) goto done;
   join_fill(use, n, s, out);
   /* the last part's end lands on the first's start when they are within rounding */
-  if (ends_apart(use[n - 1], use[0]) <= 1e-9 * size)
+  if (ends_apart(use[n - 1], use[0]) <= gap)
     memcpy(out->ctrl + (N - 1) * (size_t)dim, out->ctrl, (size_t)dim * sizeof(double));
   e = bsfit_curve_validate(out, st);
   if (e != BSFIT_OK) bsfit_curve_free(out);

@@ -35,8 +35,10 @@ int bsfit__fit_line(const bsfit__run *r, bsfit__line *L);
 
 /* Geometric least-squares circle of the run (n >= 3), by Gauss-Newton from `init` (a
 ** nearby run's circle: it then settles in a step or two) or, when NULL, from the circle
-** through its first, middle and last samples, until a step moves it by eps at most (or
-** by 1e-13 of its scale); 0 when they are collinear or it does not settle. */
+** through its first, middle and last samples, until a step moves no sample's distance by
+** more than eps (or the circle by 1e-13 of its scale); steps in the frame of the arc, so
+** that short arcs of dense samples fit to rounding. 0 when they are collinear, the radius
+** would pass 1e6 times the run's extent (a line), or it does not settle. */
 int bsfit__fit_circle(const bsfit__run *r, const bsfit__circle *init, double eps, bsfit__circle *C);
 
 double bsfit__line_dist(const bsfit__line *L, const double *x);

@@ -4,10 +4,35 @@
 ** free-form runs (bsfit_features.h): the maximal runs each model explains, the cover
 ** of least cost (dynamic programming), and where consecutive pieces meet.
 */
+#include <float.h>
 #include <math.h>
 #include <string.h>
 
 #include "segment_internal.h"
+
+/* Whether a circle's distances are computed to far better than tol: their rounding is
+** about DBL_EPSILON r, and an exact line's samples, collinear to rounding, fit circles of
+** radius 1e12 whose distances are noise (they took in the next sides of a gear, 7% of its
+** size off, once short dense arcs could be fitted). (A rule that the run must bow away
+** from its chord by more than tol was tried too: it lost 4 noisy sections of 390 to the
+** smooth path, the arcs of sparse noisy D shapes among them.) */
+static int arc_resolved(const section *s, const bsfit__circle *C) {
+  return 16.0 * DBL_EPSILON * C->r <= s->tol;
+}
+
+/* The floor of the exact tolerance: 16 DBL_EPSILON times the largest coordinate, some 8
+** units of its last place. Exact samples are their true positions rounded to half a unit
+** (a fitted model misses them by a few units, however many they are: the rounding does not
+** add up along a run, so the tolerance need not grow with its length or the number of
+** samples); it matters only for sections farther from the origin than 10^4 times their
+** size (a D of size 1e-2 at (1e4, -1e4), whose coordinates round to 9e-11 of its size,
+** had its arc cut into arcs and free runs by the 1e-10 of the size). */
+static double rounding_floor(const double *pts, size_t m) {
+  double big = 0.0;
+  size_t i;
+  for (i = 0; i < 2 * m; i++) big = fmax(big, fabs(pts[i]));
+  return 16.0 * DBL_EPSILON * big;
+}
 
 /* fits a model of `kind` to n samples from `first`; its largest distance (HUGE_VAL
 ** when it cannot be fitted) */
@@ -48,6 +73,7 @@ static double fit_model_from(const section *s, int kind, size_t first, size_t n,
     turn += ax * by - ay * bx;
   }
   md->orient = turn >= 0 ? 1.0 : -1.0;
+  if (!arc_resolved(s, &md->circle)) return HUGE_VAL;
   return bsfit__circle_max(&md->circle, &r, rms);
 }
 
@@ -949,7 +975,8 @@ bsfit_err bsfit_segment(const double *pts, size_t m, int dim, const bsfit_segmen
   s.min_len[LINE] = o.min_line ? o.min_line : 3;
   s.min_len[ARC] = o.min_arc ? o.min_arc : 4;
   s.tol = fmax((o.tol_sigma > 0 ? o.tol_sigma : 4.0) * o.sigma,
-               (o.exact > 0 ? o.exact : 1e-10) * bsfit__segment_size(pts, m));
+               fmax((o.exact > 0 ? o.exact : 1e-10) * bsfit__segment_size(pts, m),
+                    rounding_floor(pts, m)));
   s.unit = s.tol / (o.tol_sigma > 0 ? o.tol_sigma : 4.0);
   s.noisy = o.sigma > 0 && s.tol <= (o.tol_sigma > 0 ? o.tol_sigma : 4.0) * o.sigma;
   s.gaps = bsfit__alloc(a, bsfit__mulsize(2 * m + 1, sizeof(size_t)));

@@ -89,57 +89,108 @@ static int circle3(const double *a, const double *b, const double *c, bsfit__cir
   return 1;
 }
 
-/* one Gauss-Newton step on sum (|p - c| - r)^2, in coordinates relative to o;
-** returns the step's length, or -1 when the normal matrix is singular */
-static double gauss_newton_step(const bsfit__run *r, const double *o, double *c, double *rad) {
-  double A[BSFIT__SMALL][BSFIT__SMALL] = {{0}}, g[3] = {0, 0, 0};
-  size_t k;
-  int i, j;
-  for (k = 0; k < r->n; k++) {
-    const double *p = bsfit__run_at(r, k);
-    double x = p[0] - o[0] - c[0], y = p[1] - o[1] - c[1], d = sqrt(x * x + y * y), J[3], e;
-    if (d <= 0) continue;
-    J[0] = -x / d;
-    J[1] = -y / d;
-    J[2] = -1.0;
-    e = d - *rad;
-    for (i = 0; i < 3; i++) {
-      g[i] -= J[i] * e;
-      for (j = 0; j <= i; j++) A[i][j] += J[i] * J[j];
-    }
-  }
-  for (i = 0; i < 3; i++)
-    for (j = i + 1; j < 3; j++) A[i][j] = A[j][i];
-  if (!bsfit__small_cholesky(3, A)) return -1.0;
-  bsfit__small_chol_solve(3, A, g);
-  c[0] += g[0];
-  c[1] += g[1];
-  *rad += g[2];
-  return sqrt(g[0] * g[0] + g[1] * g[1] + g[2] * g[2]);
+/* Solves the 3 x 3 SPD system A x = g (A's lower triangle) in place of g, by LDL^T: each
+** pivot measured against its own diagonal entry, which is what scaling A to a unit
+** diagonal would do, without the square roots (the fit's steps are over few samples, where
+** they were a third of the cost). 0 when a pivot is below 1e-13 of it. */
+static int solve3(const double A[3][3], double *g) {
+  double d0 = A[0][0], l10, l20, d1, l21, d2;
+  if (!(d0 > 0)) return 0;
+  l10 = A[1][0] / d0, l20 = A[2][0] / d0;
+  d1 = A[1][1] - l10 * A[1][0];
+  if (!(d1 > 1e-13 * A[1][1])) return 0;
+  l21 = (A[2][1] - l20 * A[1][0]) / d1;
+  d2 = A[2][2] - l20 * A[2][0] - l21 * l21 * d1;
+  if (!(d2 > 1e-13 * A[2][2])) return 0;
+  g[1] -= l10 * g[0];
+  g[2] -= l20 * g[0] + l21 * g[1];
+  g[0] /= d0, g[1] /= d1, g[2] /= d2;
+  g[1] -= l21 * g[2];
+  g[0] -= l10 * g[1] + l20 * g[2];
+  return 1;
 }
 
-int bsfit__fit_circle(const bsfit__run *r, const bsfit__circle *init, double eps, bsfit__circle *C) {
+/* One Gauss-Newton step on sum (|p - c| - r)^2, in coordinates relative to o. The
+** residual's gradient is (-u, -1), u the unit vector from the centre to a sample; on a
+** short arc every u is nearly the same, so that the columns (u, 1) are nearly dependent
+** and the normal matrix's condition is about 1/theta^4 for an arc of theta radians (4
+** samples of a circle of 10^4 spanned 2e-3 rad: 1e11, and its Cholesky refused them). So
+** the step is taken in a frame of the arc: t and n across and along the centre's
+** direction to the middle sample, the centre moved by a t + b n and the radius by s - b,
+** whose columns are (-u.t, 1 - u.n, -1) ~ (-phi, phi^2 / 2, -1): scaled to a unit
+** diagonal (solve3) they are well conditioned at any theta. Returns a bound on how much
+** the step moves any sample's residual, |a| max |u.t| + |b| max (1 - u.n) + |s| (on a
+** short arc the centre and radius drift together by far more than any distance changes),
+** and its length in *len; -1 when the normal matrix is singular. */
+static double gauss_newton_step(const bsfit__run *r, const double *o, double *c, double *rad,
+                                double *len) {
+  double A[3][3] = {{0}}, g[3] = {0, 0, 0}, t[2], nn[2];
+  const double *mid = bsfit__run_at(r, r->n / 2);
+  double mx = mid[0] - o[0] - c[0], my = mid[1] - o[1] - c[1], dm = sqrt(mx * mx + my * my);
+  double most[2] = {0, 0};
+  size_t k;
+  if (!(dm > 0)) return -1.0;
+  nn[0] = mx / dm, nn[1] = my / dm, t[0] = -nn[1], t[1] = nn[0];
+  for (k = 0; k < r->n; k++) {
+    const double *p = bsfit__run_at(r, k);
+    double x = p[0] - o[0] - c[0], y = p[1] - o[1] - c[1], d = sqrt(x * x + y * y), e;
+    double ut, v, inv;
+    if (d <= 0) continue;
+    inv = 1.0 / d;
+    ut = (x * t[0] + y * t[1]) * inv;
+    /* 1 - u.n, to about DBL_EPSILON / v of itself: that only slows the steps (the circle
+    ** that zeroes the residuals zeroes the gradient whatever J is) */
+    v = (d - (x * nn[0] + y * nn[1])) * inv;
+    if (fabs(ut) > most[0]) most[0] = fabs(ut);
+    if (v > most[1]) most[1] = v;
+    e = d - *rad;
+    /* J = (-ut, v, -1) */
+    g[0] += ut * e, g[1] -= v * e, g[2] += e;
+    A[0][0] += ut * ut, A[1][0] -= v * ut, A[1][1] += v * v;
+    A[2][0] += ut, A[2][1] -= v, A[2][2] += 1.0;
+  }
+  if (!solve3(A, g)) return -1.0;
+  c[0] += g[0] * t[0] + g[1] * nn[0];
+  c[1] += g[0] * t[1] + g[1] * nn[1];
+  *rad += g[2] - g[1];
+  *len = sqrt(g[0] * g[0] + g[1] * g[1] + (g[2] - g[1]) * (g[2] - g[1]));
+  return fabs(g[0]) * most[0] + fabs(g[1]) * most[1] + fabs(g[2]);
+}
+
+/* The largest radius a run's circle may have: 1e6 times the run's extent. Its distances are
+** computed to about DBL_EPSILON r, its bow over the run is about extent^2 / (8 r): beyond
+** that radius the samples are collinear to rounding, and the fit drifts towards a line
+** (a noisy corner's samples fitted a circle of 1e17 whose distances all came out 0). */
+static double largest_radius(const bsfit__run *r) {
+  const double *o = bsfit__run_at(r, 0), *b = bsfit__run_at(r, r->n / 2);
+  const double *z = bsfit__run_at(r, r->n - 1);
+  double bx = b[0] - o[0], by = b[1] - o[1], zx = z[0] - o[0], zy = z[1] - o[1];
+  return 1e6 * sqrt(fmax(bx * bx + by * by, zx * zx + zy * zy));
+}
+
+int bsfit__fit_circle(const bsfit__run *r, const bsfit__circle *init, double eps,
+                      bsfit__circle *C) {
   const double *o = bsfit__run_at(r, 0);
-  double c[2], rad, step;
+  double c[2], rad, moved, len = 0, rmax;
   int it;
   if (r->n < 3) return 0;
-  if (init != NULL && r->n > 3)
+  rmax = largest_radius(r);
+  if (init != NULL && r->n > 3 && init->r <= rmax)
     *C = *init;
   else if (!circle3(o, bsfit__run_at(r, r->n / 2), bsfit__run_at(r, r->n - 1), C))
     return 0;
-  if (r->n == 3) return 1;
+  if (r->n == 3) return C->r <= rmax;
   c[0] = C->c[0] - o[0];
   c[1] = C->c[1] - o[1];
   rad = C->r;
-  /* until a step moves the circle by less than eps (the caller's use of it: distances are
-  ** compared with a tolerance) or by 1e-13 of its scale (exact samples converge
-  ** quadratically: the error left is the step's square) */
+  /* until a step moves no sample's distance by more than eps (the caller's use of it:
+  ** distances are compared with a tolerance), or the circle by 1e-13 of its scale (exact
+  ** samples converge quadratically: the error left is the step's square). On a short arc
+  ** the centre and radius drift together by far more than any distance changes. */
   for (it = 0; it < 30; it++) {
-    double scale;
-    step = gauss_newton_step(r, o, c, &rad);
-    if (step < 0 || !isfinite(rad)) return 0;
-    scale = rad + fabs(c[0]) + fabs(c[1]);
-    if (step <= 1e-13 * scale || step <= eps) break;
+    moved = gauss_newton_step(r, o, c, &rad, &len);
+    if (moved < 0 || !(rad <= rmax) || !isfinite(c[0]) || !isfinite(c[1])) return 0;
+    if (len <= 1e-13 * (rad + fabs(c[0]) + fabs(c[1])) || moved <= eps) break;
   }
   if (!(rad > 0)) return 0;
   C->c[0] = o[0] + c[0];

@@ -172,7 +172,12 @@ end
 -- distance from their own piece and the distance to the span's line (certified: see
 -- src/core/piece_distances.c); the others the nearer of Newton's and the global search's,
 -- as the Lua loop did. The certified ones differ from the loop's in the last digits only
--- (the same foot, by other arithmetic), never by more than 1e-14 of the size.
+-- (the same foot, by other arithmetic), never by more than 1e-14 of the size above it.
+-- Samples on arcs are certified from their span's circle without Newton: below the loop's
+-- by up to 1e-12 of the size, where the loop's Newton on a rational span stops short along
+-- the tangent (a rounded rectangle of 9 uneven samples per side: 7.8e-12 by the loop's
+-- foot, 5.3e-14 by a golden-section search along the span, 0 by the circle; the sample is
+-- on the true outline). The dense measure below holds both to the truth.
 T.test("piece distances: the C kernel agrees with the Lua loop to rounding", function()
   local cases, n, differ, worst, worst_max = 0, 0, 0, 0, 0
   for _, c in ipairs(sharp_cases({ 3, 4, 6, 9 }, { 0, 1e-4, 1e-3 })) do
@@ -183,7 +188,7 @@ T.test("piece distances: the C kernel agrees with the Lua loop to rounding", fun
       local size, ok, mx, mref = shapes.size(shapes.all()[c.name:match("^%S+")]), #d == #ref, 0, 0
       for i = 1, #ref do
         local e = d:get(i) - ref[i]
-        ok = ok and math.abs(e) <= 1e-14 * size
+        ok = ok and e <= 1e-14 * size and e >= -1e-12 * size
         if e ~= 0 then differ = differ + 1 end
         worst = math.max(worst, math.abs(e) / size)
         mx, mref = math.max(mx, d:get(i)), math.max(mref, ref[i])
