@@ -247,6 +247,20 @@ T.test("pieces that cannot make one curve keep the smooth path (a noisy cam rais
   T.ok(ok, tostring(ok or C))
   T.ok(ok and rep.pieces == nil and C:is_periodic(), "one smooth closed curve")
   local sharp = require "bsfit.strategy.sharp"
+  -- pieces whose ends the join refuses (as bs.curve.join does when two parts do not meet):
+  -- refused with the reason, and the smooth path taken, not an error out of auto.run
+  -- (a T of 6 samples per side at noise 1e-3: through its 8 pieces otherwise)
+  local Q = bs.points.new(shapes.sample(ALL.T, 6, { sigma = 1e-3 * shapes.size(ALL.T), seed = 1 }))
+  local _, rep1 = auto.run(Q)
+  T.eq(rep1.pieces and #rep1.pieces, 8, "the T through its pieces")
+  local assemble = sharp.assemble
+  sharp.assemble = function() error("bs.curve.join: part 2 starts 0.54 away from part 1's end") end
+  local fine, C2, rep2 = pcall(auto.run, Q)
+  sharp.assemble = assemble
+  T.ok(fine, "a join refused: " .. tostring(fine or C2))
+  T.ok(fine and rep2.pieces == nil and C2:is_periodic(), "a join refused: one smooth closed curve")
+  T.ok(fine and tostring(rep2.pieces_rejected):find("make no curve", 1, true) ~= nil,
+       "a join refused: said in rep.pieces_rejected (" .. tostring(fine and rep2.pieces_rejected) .. ")")
   T.ok(sharp.degenerate { { kind = "arc", start = { 1, 0 }, ["end"] = { 1, 0 }, radius = 1, sweep = 2 * math.pi },
                           { kind = "line", start = { 1, 0 }, ["end"] = { 1, 0 } } } ~= nil)
   T.eq(sharp.degenerate { { kind = "line", start = { 0, 0 }, ["end"] = { 1, 0 } },

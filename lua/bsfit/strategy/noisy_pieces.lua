@@ -22,7 +22,8 @@
 --     one smooth curve through both its sides; weak corners among strong ones are softened
 --     into bends (sharp.soften), a section of weak corners only is a smooth curve;
 --   - no piece degenerate, no corner farther from its samples than the longest step;
---   - the one curve stays within 6 sigma of every sample and does not cross itself.
+--   - they make one curve (bs.curve.join), which stays within 6 sigma of every sample and
+--     does not cross itself.
 -- The evidence of a corner (how much worse one smooth curve through both its sides explains
 -- their samples, in sigma^2) is, without a corner, about chi-square with the two models'
 -- one or two more parameters: above 14 one time in a thousand. The estimate of sigma from
@@ -105,7 +106,10 @@ end
 -- sample (6 sigma), and pieces that cross (a short noisy side read as an arc bulging over
 -- its neighbour) are no better than the smooth path, which the loops step can still repair.
 local function curve_within_noise(P, pieces, s, closed)
-  local C = sharp.assemble(P, pieces, { closed = closed, sigma = s })
+  -- pieces that do not make one curve (bs.curve.join raises where two do not meet) are
+  -- refused like any other: the smooth path remains
+  local made, C = pcall(sharp.assemble, P, pieces, { closed = closed, sigma = s })
+  if not made then return nil, "the pieces make no curve: " .. tostring(C) end
   local d = sharp.distances(C, P, pieces)
   if d:max() > 6 * s then return nil, ("curve %.3g sigma from a sample"):format(d:max() / s) end
   if closed and bs.geom.self_intersections(C, math.max(2000, 32 * C:distinct())) > 0 then
