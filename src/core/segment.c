@@ -16,7 +16,7 @@
 ** size off, once short dense arcs could be fitted). (A rule that the run must bow away
 ** from its chord by more than tol was tried too: it lost 4 noisy sections of 390 to the
 ** smooth path, the arcs of sparse noisy D shapes among them.) */
-static int arc_resolved(const section *s, const bsfit__circle *C) {
+static int arc_resolved(const seg_section *s, const bsfit__circle *C) {
   return 16.0 * DBL_EPSILON * C->r <= s->tol;
 }
 
@@ -36,8 +36,8 @@ static double rounding_floor(const double *pts, size_t m) {
 
 /* fits a model of `kind` to n samples from `first`; its largest distance (HUGE_VAL
 ** when it cannot be fitted) */
-static double fit_model_from(const section *s, int kind, size_t first, size_t n, const model *warm,
-                             model *md, double *rms) {
+static double fit_model_from(const seg_section *s, int kind, size_t first, size_t n,
+                             const seg_model *warm, seg_model *md, double *rms) {
   bsfit__run r = run_of(s, first, n);
   double turn = 0;
   size_t k;
@@ -77,7 +77,7 @@ static double fit_model_from(const section *s, int kind, size_t first, size_t n,
   return bsfit__circle_max(&md->circle, &r, rms);
 }
 
-static double fit_model(const section *s, int kind, size_t first, size_t n, model *md,
+static double fit_model(const seg_section *s, int kind, size_t first, size_t n, seg_model *md,
                         double *rms) {
   return fit_model_from(s, kind, first, n, NULL, md, rms);
 }
@@ -89,7 +89,7 @@ static double fit_model(const section *s, int kind, size_t first, size_t n, mode
 /* A quick no for a seed of minl samples: the line through its ends (the circle through
 ** its ends and middle) misses one of them by far more than any least-squares model
 ** could spread (3 tol for a line, 8 for a circle). */
-static int seed_misses(const section *s, int kind, size_t i, size_t n) {
+static int seed_misses(const seg_section *s, int kind, size_t i, size_t n) {
   const double *a = sample(s, i), *b = sample(s, i + n - 1);
   size_t k;
   if (kind == LINE) {
@@ -115,8 +115,8 @@ static int seed_misses(const section *s, int kind, size_t i, size_t n) {
 /* A model explains its samples when every one lies within tol. (A chi-square test on
 ** their residual was tried as well: it turned fillets into corners; docs/auto.md.) This
 ** is what makes runs nest: a model that explains a run explains every part of it. */
-static int fit_explains(const section *s, int kind, size_t first, size_t n, const model *warm,
-                        model *md) {
+static int fit_explains(const seg_section *s, int kind, size_t first, size_t n,
+                        const seg_model *warm, seg_model *md) {
   return fit_model_from(s, kind, first, n, warm, md, NULL) <= s->tol;
 }
 
@@ -145,10 +145,10 @@ static int worth_refit(const refit_mark *t, size_t i, size_t n) {
 ** run ends there). A short run whose last samples were judged by an older model is
 ** confirmed by a whole fit, or falls back to the last length a fit confirmed. Returns
 ** its length; md explains all of it. */
-static size_t grow_run(const section *s, int kind, size_t i, size_t n, size_t limit, model *md,
-                       refit_mark *tried) {
+static size_t grow_run(const seg_section *s, int kind, size_t i, size_t n, size_t limit,
+                       seg_model *md, refit_mark *tried) {
   size_t good = n;
-  model next;
+  seg_model next;
   while (n < limit) {
     if (model_dist(md, sample(s, i + n)) <= s->tol) {
       n++;
@@ -169,8 +169,8 @@ static size_t grow_run(const section *s, int kind, size_t i, size_t n, size_t li
 
 /* A first model for the run from i: n samples fitted (warm-started from warm), else its
 ** minl samples. Returns the samples it explains, 0 when none. */
-static size_t seed_run(const section *s, int kind, size_t i, size_t n, const model *warm,
-                       model *md, refit_mark *tried) {
+static size_t seed_run(const seg_section *s, int kind, size_t i, size_t n, const seg_model *warm,
+                       seg_model *md, refit_mark *tried) {
   size_t minl = s->min_len[kind];
   tried->start = i, tried->len = n;
   if (n > minl && fit_explains(s, kind, i, n, warm, md)) return n;
@@ -186,9 +186,9 @@ static size_t seed_run(const section *s, int kind, size_t i, size_t n, const mod
 ** from i, so each start resumes where the previous stopped: a short run refitted
 ** (warm-started from the previous model), a long one with the previous model, which
 ** explains it. O(m) fits' worth of work. */
-static bsfit_err maximal_runs(const section *s, int kind, size_t *len) {
+static bsfit_err maximal_runs(const seg_section *s, int kind, size_t *len) {
   size_t i, prev = 0, minl = s->min_len[kind];
-  model md;
+  seg_model md;
   refit_mark tried = {0, 0};
   for (i = 0; i < s->m; i++) {
     size_t limit = s->closed ? s->m : s->m - i;
@@ -310,7 +310,7 @@ static void heap_pop(start_heap *h) {
 }
 
 /* best piece of `kind` ending at offset j: its cost (HUGE_VAL when none) and start */
-static double best_of_kind(const section *s, size_t origin, size_t j, int kind,
+static double best_of_kind(const seg_section *s, size_t origin, size_t j, int kind,
                            const size_t *len, const cell *prim, const cell *fr, start_heap *h,
                            size_t *start) {
   size_t minl = s->min_len[kind];
@@ -334,13 +334,14 @@ static double best_of_kind(const section *s, size_t origin, size_t j, int kind,
 #define RSS_PENALTY 32.0
 #define RSS_COST_MAX 2000
 
-static double piece_rss(const section *s, int kind, size_t first, size_t n) {
+static double piece_rss(const seg_section *s, int kind, size_t first, size_t n) {
   return kind == LINE ? bsfit__moments_line_rss(s->mom, first, n)
                       : bsfit__moments_arc_rss(s->mom, first, n);
 }
 
-static void best_primitive_weighed(const section *s, size_t origin, size_t j,
-                                   size_t *const len[2], const cell *prim, const cell *fr, cell *c) {
+static void best_primitive_weighed(const seg_section *s, size_t origin, size_t j,
+                                   size_t *const len[2], const cell *prim, const cell *fr,
+                                   cell *c) {
   int kind;
   double unit2 = s->unit * s->unit;
   c->cost = HUGE_VAL;
@@ -363,7 +364,7 @@ static void best_primitive_weighed(const section *s, size_t origin, size_t j,
 }
 
 /* best primitive piece ending at offset j (into *c); a line wins a tie with an arc */
-static void best_primitive(const section *s, size_t origin, size_t j, size_t *const len[2],
+static void best_primitive(const seg_section *s, size_t origin, size_t j, size_t *const len[2],
                            const cell *prim, const cell *fr, start_heap heaps[2], cell *c) {
   int kind;
   c->cost = HUGE_VAL;
@@ -381,7 +382,7 @@ static void best_primitive(const section *s, size_t origin, size_t j, size_t *co
 
 /* The pieces (first/last sample, kind) of the cheapest cover of the M samples from
 ** origin, written backwards into out; returns their number. */
-static size_t cheapest_cover(const section *s, size_t origin, size_t *const len[2],
+static size_t cheapest_cover(const seg_section *s, size_t origin, size_t *const len[2],
                              start_heap heaps[2], cell *prim, cell *fr, bsfit_piece *out) {
   size_t M = s->m, j, np = 0;
   int in_free;
@@ -428,13 +429,13 @@ static size_t cheapest_cover(const section *s, size_t origin, size_t *const len[
 ** Where pieces meet
 ** ===================================================================== */
 
-static size_t piece_count(const section *s, const bsfit_piece *p) {
+static size_t piece_count(const seg_section *s, const bsfit_piece *p) {
   (void)s;
   return p->count;
 }
 
 /* segment_internal.h */
-void bsfit__segment_refit(const section *s, bsfit_piece *p, model *md) {
+void bsfit__segment_refit(const seg_section *s, bsfit_piece *p, seg_model *md) {
   double rms = 0;
   p->max = fit_model(s, p->kind, p->first, piece_count(s, p), md, &rms);
   p->rms = rms;
@@ -445,7 +446,7 @@ void bsfit__segment_refit(const section *s, bsfit_piece *p, model *md) {
 }
 
 /* segment_internal.h */
-void bsfit__model_foot(const model *md, const double *x, double *f, double *t) {
+void bsfit__model_foot(const seg_model *md, const double *x, double *f, double *t) {
   if (md->kind == LINE) {
     double u = (x[0] - md->line.p[0]) * md->line.d[0] + (x[1] - md->line.p[1]) * md->line.d[1];
     f[0] = md->line.p[0] + u * md->line.d[0];
@@ -462,7 +463,7 @@ void bsfit__model_foot(const model *md, const double *x, double *f, double *t) {
 }
 
 /* the largest spacing of a piece's samples */
-static double max_spacing(const section *s, const bsfit_piece *p) {
+static double max_spacing(const seg_section *s, const bsfit_piece *p) {
   size_t k, n = piece_count(s, p);
   double h = 0;
   for (k = 0; k + 1 < n; k++) {
@@ -477,11 +478,11 @@ static double max_spacing(const section *s, const bsfit_piece *p) {
 ** circles when their centres are r1 + r2 or |r1 - r2| apart, within the tolerance
 ** (a tangent join meets at the touching point, which the intersection formulas find
 ** only to the square root of the rounding). Writes the touching point. */
-static int touching(const section *s, const model *ma, const model *mb, double *x) {
+static int touching(const seg_section *s, const seg_model *ma, const seg_model *mb, double *x) {
   double t[2];
   if (ma->kind == LINE && mb->kind == LINE) return 0;
   if (ma->kind == LINE || mb->kind == LINE) {
-    const model *ml = ma->kind == LINE ? ma : mb, *mc = ma->kind == LINE ? mb : ma;
+    const seg_model *ml = ma->kind == LINE ? ma : mb, *mc = ma->kind == LINE ? mb : ma;
     bsfit__model_foot(ml, mc->circle.c, x, t);
     return fabs(hypot(x[0] - mc->circle.c[0], x[1] - mc->circle.c[1]) - mc->circle.r) <= 2 * s->tol;
   } else {
@@ -503,8 +504,8 @@ static int touching(const section *s, const model *ma, const model *mb, double *
 /* Is x where A (last sample qa) may meet B (first sample qb)? Beyond qa along A, before
 ** qb along B (by `slack` at most), and within reach of both (as far as the pieces' own
 ** spacing). */
-static int in_gap(const section *s, const bsfit_piece *A, const model *ma, const bsfit_piece *B,
-                  const model *mb, const double *x, double slack) {
+static int in_gap(const seg_section *s, const bsfit_piece *A, const seg_model *ma,
+                  const bsfit_piece *B, const seg_model *mb, const double *x, double slack) {
   const double *qa = sample(s, A->first + A->count - 1), *qb = sample(s, B->first);
   double ta[2], tb[2], f[2], chord = hypot(qb[0] - qa[0], qb[1] - qa[1]);
   double reach_a = 1.5 * max_spacing(s, A) + 1.5 * chord + s->tol;
@@ -521,8 +522,8 @@ static int in_gap(const section *s, const bsfit_piece *A, const model *ma, const
 ** their models that lies in the gap between them (nearest to both samples), a corner
 ** unless their directions there agree to what the tolerance lets them vary over the
 ** shorter piece. Returns 0 (no such point), BSFIT_JOIN_CORNER or BSFIT_JOIN_TANGENT. */
-static int meet(const section *s, const bsfit_piece *A, const model *ma, const bsfit_piece *B,
-                const model *mb, double *x) {
+static int meet(const seg_section *s, const bsfit_piece *A, const seg_model *ma,
+                const bsfit_piece *B, const seg_model *mb, double *x) {
   const double *qa = sample(s, A->first + A->count - 1), *qb = sample(s, B->first);
   double cand[2][2], best = HUGE_VAL, ta[2], tb[2], f[2], lim, angle;
   int nc = 0, k, found = 0;
@@ -561,13 +562,13 @@ static int meet(const section *s, const bsfit_piece *A, const model *ma, const b
 ** The pieces
 ** ===================================================================== */
 
-static void set_line_ends(bsfit_piece *p, const model *md) {
+static void set_line_ends(bsfit_piece *p, const seg_model *md) {
   memcpy(p->t_start, md->line.d, sizeof p->t_start);
   memcpy(p->t_end, md->line.d, sizeof p->t_end);
 }
 
 /* arcs: the sweep from start to end in the samples' direction */
-static void set_arc_sweep(bsfit_piece *p, const model *md, int whole) {
+static void set_arc_sweep(bsfit_piece *p, const seg_model *md, int whole) {
   double a0 = atan2(p->start[1] - md->circle.c[1], p->start[0] - md->circle.c[0]);
   double a1 = atan2(p->end[1] - md->circle.c[1], p->end[0] - md->circle.c[0]);
   double sw = a1 - a0;
@@ -582,8 +583,8 @@ static void set_arc_sweep(bsfit_piece *p, const model *md, int whole) {
 
 /* A meets B (both in the list, B after A): sets A's end, B's start, tangents and B's
 ** join. Returns 0 when two primitives' models do not meet between them. */
-static int join_pieces(const section *s, bsfit_piece *A, const model *ma, bsfit_piece *B,
-                       const model *mb) {
+static int join_pieces(const seg_section *s, bsfit_piece *A, const seg_model *ma, bsfit_piece *B,
+                       const seg_model *mb) {
   double x[2], f[2], t[2];
   int k;
   if (A->kind != FREE && B->kind != FREE) {
@@ -612,12 +613,12 @@ static int join_pieces(const section *s, bsfit_piece *A, const model *ma, bsfit_
 /* A free piece of 2 (3) samples between two primitives becomes the line (circle)
 ** through them when both its ends then meet the neighbours: a short side, or an arc
 ** sampled too sparsely to be told from a curve, that both neighbours confirm. */
-static void short_runs(const section *s, bsfit_piece *p, model *md, size_t np) {
+static void short_runs(const seg_section *s, bsfit_piece *p, seg_model *md, size_t np) {
   size_t i;
   for (i = 0; i < np; i++) {
     size_t ia = (i + np - 1) % np, ib = (i + 1) % np;
     bsfit_piece trial = p[i];
-    model mt;
+    seg_model mt;
     double x[2];
     if (p[i].kind != FREE || (p[i].count != 2 && p[i].count != 3) || np < 2) continue;
     if (!s->closed && (i == 0 || i + 1 == np)) continue;
@@ -636,7 +637,7 @@ static void short_runs(const section *s, bsfit_piece *p, model *md, size_t np) {
 ** free run of them between two primitives would round the corner. Each is given to the
 ** neighbour whose model it lies nearer, when within twice the tolerance of it, and the
 ** free run goes. Returns the new number of pieces. */
-static size_t absorb_strays(const section *s, bsfit_piece *p, model *md, size_t np) {
+static size_t absorb_strays(const seg_section *s, bsfit_piece *p, seg_model *md, size_t np) {
   size_t i = 0;
   while (i < np && np > 2) {
     size_t ia = (i + np - 1) % np, ib = (i + 1) % np, k, n = p[i].count;
@@ -678,10 +679,10 @@ static size_t absorb_strays(const section *s, bsfit_piece *p, model *md, size_t 
 ** their models, refitted with its samples, still explain every one: all to the one after,
 ** all to the one before, or split between them. Returns the new number of pieces. */
 #define ABSORB_MAX 8
-static int absorb_split(const section *s, bsfit_piece *A, model *ma, bsfit_piece *F,
-                        bsfit_piece *B, model *mb) {
+static int absorb_split(const seg_section *s, bsfit_piece *A, seg_model *ma, bsfit_piece *F,
+                        bsfit_piece *B, seg_model *mb) {
   size_t n = F->count, k;
-  model ta, tb;
+  seg_model ta, tb;
   for (k = n + 1; k-- > 0;) { /* k samples to A, n - k to B; all to B first */
     size_t kk = n - k;
     int ok_a = kk == 0 || fit_explains(s, A->kind, A->first, A->count + kk, ma, &ta);
@@ -696,7 +697,7 @@ static int absorb_split(const section *s, bsfit_piece *A, model *ma, bsfit_piece
   return 0;
 }
 
-static size_t absorb_free_runs(const section *s, bsfit_piece *p, model *md, size_t np) {
+static size_t absorb_free_runs(const seg_section *s, bsfit_piece *p, seg_model *md, size_t np) {
   size_t i = 0;
   while (i < np && np > 2) {
     size_t ia = (i + np - 1) % np, ib = (i + 1) % np;
@@ -715,7 +716,7 @@ static size_t absorb_free_runs(const section *s, bsfit_piece *p, model *md, size
 
 /* The ends of every piece; a free bridge (no samples) is inserted where two primitives
 ** do not meet. p has room for 2 np pieces; returns the new count. */
-static size_t place_ends(const section *s, bsfit_piece *p, model *md, size_t np) {
+static size_t place_ends(const seg_section *s, bsfit_piece *p, seg_model *md, size_t np) {
   size_t i, n = np;
   for (i = 0; i < n; i++) {
     size_t ib = i + 1;
@@ -741,7 +742,7 @@ static size_t place_ends(const section *s, bsfit_piece *p, model *md, size_t np)
 }
 
 /* the first and last pieces of an open section end at its first and last samples */
-static void open_ends(const section *s, bsfit_piece *p, const model *md, size_t n) {
+static void open_ends(const seg_section *s, bsfit_piece *p, const seg_model *md, size_t n) {
   double t[2];
   bsfit_piece *z = &p[n - 1];
   p[0].join = BSFIT_JOIN_END;
@@ -796,19 +797,20 @@ bsfit_err bsfit__segment_check(const double *pts, size_t m, int dim, const bsfit
 ** pentagon of 6 samples per side at noise 1e-4, its equal sides cut at the first of
 ** them, was 1e-4 or 1.6e-2 of its size off by the start), and a run that holds every
 ** sample of an open run of an outline, tried as closed, starts after its gap. */
-static double step_into(const section *s, size_t i) {
+static double step_into(const seg_section *s, size_t i) {
   const double *a = sample(s, i + s->m - 1), *b = sample(s, i);
   return hypot(b[0] - a[0], b[1] - a[1]);
 }
 
-static int starts_before(const section *s, size_t i, size_t j) {
+static int starts_before(const seg_section *s, size_t i, size_t j) {
   const double *a = sample(s, i), *b = sample(s, j);
   double hi = step_into(s, i), hj = step_into(s, j);
   if (hi != hj) return hi > hj;
   return a[0] < b[0] || (a[0] == b[0] && a[1] < b[1]);
 }
 
-static void longest_runs(const section *s, size_t *const len[2], size_t rmax[2], size_t from[2]) {
+static void longest_runs(const seg_section *s, size_t *const len[2], size_t rmax[2],
+                         size_t from[2]) {
   size_t i;
   int k;
   rmax[0] = rmax[1] = from[0] = from[1] = 0;
@@ -821,8 +823,8 @@ static void longest_runs(const section *s, size_t *const len[2], size_t rmax[2],
 /* The cheapest cover (pieces in order into p, from p[m + 1] as scratch). A closed
 ** section is cut where a piece starts: tried at the starts of the longest line and arc
 ** and at the samples after them, the cheapest kept. Returns the number of pieces. */
-static size_t cover(section *s, size_t *const len[2], cell *prim, cell *fr,
-                    start_heap heaps[2], bsfit_piece *p) {
+static size_t cover(seg_section *s, size_t *const len[2], cell *prim, cell *fr, start_heap heaps[2],
+                    bsfit_piece *p) {
   size_t rmax[2], from[2], origins[4], no = 0, k, i, best_np = 0;
   double best = HUGE_VAL;
   longest_runs(s, len, rmax, from);
@@ -848,7 +850,7 @@ static size_t cover(section *s, size_t *const len[2], cell *prim, cell *fr,
 /* Under noise a line may take the first samples of the fillet after it (they lie within
 ** the tolerance of both): each boundary sample goes to the neighbour whose model it
 ** fits better, and both are refitted; a few rounds. */
-static void rebalance(const section *s, bsfit_piece *p, model *md, size_t np) {
+static void rebalance(const seg_section *s, bsfit_piece *p, seg_model *md, size_t np) {
   size_t i, round;
   for (round = 0; round < 3; round++) {
     int moved = 0;
@@ -877,7 +879,7 @@ static void rebalance(const section *s, bsfit_piece *p, model *md, size_t np) {
 ** step (from the last sample to the first, around the centre in the samples' direction)
 ** must be no longer than 1.5 times the longest of the others: half a circle is an open
 ** arc, however exactly it is sampled. */
-static int goes_round(const section *s, const bsfit_piece *p, const model *md) {
+static int goes_round(const seg_section *s, const bsfit_piece *p, const seg_model *md) {
   double longest = 0, closing = 0;
   size_t k;
   for (k = 0; k < p->count; k++) { /* the last step, k = count - 1, closes the section */
@@ -895,7 +897,7 @@ static int goes_round(const section *s, const bsfit_piece *p, const model *md) {
 }
 
 /* Models, ends and sweeps of the np pieces of the cover (p has room for 2 np). */
-static size_t finish_pieces(const section *s, bsfit_piece *p, model *md, size_t np) {
+static size_t finish_pieces(const seg_section *s, bsfit_piece *p, seg_model *md, size_t np) {
   size_t i;
   for (i = 0; i < np; i++) {
     md[i].kind = p[i].kind;
@@ -936,7 +938,7 @@ static size_t finish_pieces(const section *s, bsfit_piece *p, model *md, size_t 
   return np;
 }
 
-static void count_gaps(section *s) {
+static void count_gaps(seg_section *s) {
   size_t i;
   s->gaps[0] = 0;
   for (i = 0; i < 2 * s->m; i++) {
@@ -949,11 +951,11 @@ bsfit_err bsfit_segment(const double *pts, size_t m, int dim, const bsfit_segmen
                         bsfit_piece *pieces, size_t cap, size_t *count, const bsfit_allocator *a,
                         bsfit_status *st) {
   bsfit_segment_opts o;
-  section s;
+  seg_section s;
   size_t *len[2] = {NULL, NULL}, np, i;
   cell *prim = NULL, *fr = NULL;
   bsfit_piece *buf = NULL;
-  model *md = NULL;
+  seg_model *md = NULL;
   start_heap heaps[2];
   size_t *heap_at = NULL, *heap_below = NULL;
   double *heap_key = NULL;
@@ -985,7 +987,7 @@ bsfit_err bsfit_segment(const double *pts, size_t m, int dim, const bsfit_segmen
   prim = bsfit__alloc(a, bsfit__mulsize(m, sizeof(cell)));
   fr = bsfit__alloc(a, bsfit__mulsize(m, sizeof(cell)));
   buf = bsfit__alloc(a, bsfit__mulsize(2 * m + 2, sizeof(bsfit_piece)));
-  md = bsfit__alloc(a, bsfit__mulsize(2 * m + 2, sizeof(model)));
+  md = bsfit__alloc(a, bsfit__mulsize(2 * m + 2, sizeof(seg_model)));
   heap_at = bsfit__alloc(a, bsfit__mulsize(2 * m, sizeof(size_t)));
   heap_key = bsfit__alloc(a, bsfit__mulsize(2 * m, sizeof(double)));
   heap_below = bsfit__alloc(a, bsfit__mulsize(2 * m, sizeof(size_t)));
@@ -1025,7 +1027,7 @@ done:
   bsfit__free(a, prim, prim ? m * sizeof(cell) : 0);
   bsfit__free(a, fr, fr ? m * sizeof(cell) : 0);
   bsfit__free(a, buf, buf ? (2 * m + 2) * sizeof(bsfit_piece) : 0);
-  bsfit__free(a, md, md ? (2 * m + 2) * sizeof(model) : 0);
+  bsfit__free(a, md, md ? (2 * m + 2) * sizeof(seg_model) : 0);
   bsfit__free(a, heap_at, heap_at ? 2 * m * sizeof(size_t) : 0);
   bsfit__free(a, heap_key, heap_key ? 2 * m * sizeof(double) : 0);
   bsfit__free(a, heap_below, heap_below ? 2 * m * sizeof(size_t) : 0);

@@ -12,7 +12,7 @@
 #include <string.h>
 
 /* the geometric circle of n samples from first: 1 and its RMS when it can be fitted */
-static int fit_circle(const section *s, size_t first, size_t n, double *rms) {
+static int fit_circle(const seg_section *s, size_t first, size_t n, double *rms) {
   bsfit__run r = run_of(s, first, n);
   bsfit__circle C;
   if (!bsfit__fit_circle(&r, NULL, 1e-3 * s->tol, &C)) return 0;
@@ -22,7 +22,7 @@ static int fit_circle(const section *s, size_t first, size_t n, double *rms) {
 
 /* residual sum of squares of a cubic y(x) over the run, in the frame of its chord (x
 ** along it, scaled to [-1, 1]); HUGE_VAL when it cannot be fitted */
-static double cubic_rss(const section *s, size_t first, size_t n) {
+static double cubic_rss(const seg_section *s, size_t first, size_t n) {
   const double *a = sample(s, first), *b = sample(s, first + n - 1);
   double ux = b[0] - a[0], uy = b[1] - a[1], len = hypot(ux, uy),
          A[BSFIT__SMALL][BSFIT__SMALL] = {{0}};
@@ -59,7 +59,7 @@ static double cubic_rss(const section *s, size_t first, size_t n) {
 ** be fitted. */
 #define EVIDENCE_REACH 8 /* samples on each side of a join (fewer on arcs: arc_reach) */
 #define PCUBIC_MAX (2 * EVIDENCE_REACH)
-static void pcubic_fit(const section *s, size_t first, size_t n, const double *t, double cx[4],
+static void pcubic_fit(const seg_section *s, size_t first, size_t n, const double *t, double cx[4],
                        double cy[4], int *ok) {
   double A[BSFIT__SMALL][BSFIT__SMALL] = {{0}}, L[BSFIT__SMALL][BSFIT__SMALL];
   size_t k;
@@ -120,7 +120,7 @@ static int pcubic_regular(const double cx[4], const double cy[4]) {
   return hi > 0 && hi <= PCUBIC_SPEED * lo;
 }
 
-static double pcubic_rss(const section *s, size_t first, size_t n) {
+static double pcubic_rss(const seg_section *s, size_t first, size_t n) {
   double t[PCUBIC_MAX], cx[4], cy[4], len = 0, rss = 0;
   size_t k;
   int ok, round;
@@ -152,7 +152,8 @@ static double pcubic_rss(const section *s, size_t first, size_t n) {
 ** its last when -1), lie within EVIDENCE_TURN of that sample around its centre: an arc's
 ** tangent turns as it goes, and two half ellipses meet at the ends of the major axis in
 ** what one cubic across 8 + 8 sparse samples (two thirds of the ellipse) cannot follow. */
-static size_t arc_reach(const section *s, const bsfit_piece *p, const model *md, size_t n, int end) {
+static size_t arc_reach(const seg_section *s, const bsfit_piece *p, const seg_model *md, size_t n,
+                        int end) {
   const double *c = md->circle.c, *q0 = sample(s, end ? p->first + p->count - 1 : p->first);
   size_t k;
   if (md->kind != ARC) return n;
@@ -171,8 +172,9 @@ static size_t arc_reach(const section *s, const bsfit_piece *p, const model *md,
 ** than the spacing: r from the one two steps long (arc length 2 h) up, the best kept. A
 ** sparse ellipse's end (radius of curvature about a step) is such a bend; a true corner,
 ** its nearest samples half a step away, is far from every one. */
-static double bend_rss(const section *s, const bsfit_piece *A, const model *ma,
-                       const bsfit_piece *B, const model *mb, size_t first, size_t na, size_t n) {
+static double bend_rss(const seg_section *s, const bsfit_piece *A, const seg_model *ma,
+                       const bsfit_piece *B, const seg_model *mb, size_t first, size_t na,
+                       size_t n) {
   const double *V = A->end, *ta = A->t_end, *tb = B->t_start;
   double theta = atan2(fabs(ta[0] * tb[1] - ta[1] * tb[0]), ta[0] * tb[0] + ta[1] * tb[1]);
   double u[2] = {tb[0] - ta[0], tb[1] - ta[1]}, un = hypot(u[0], u[1]), len = 0, reach = 0;
@@ -204,8 +206,8 @@ static double bend_rss(const section *s, const bsfit_piece *A, const model *ma,
   return best;
 }
 
-double bsfit__join_evidence(const section *s, const bsfit_piece *A, const model *ma,
-                            const bsfit_piece *B, const model *mb, double sigma) {
+double bsfit__join_evidence(const seg_section *s, const bsfit_piece *A, const seg_model *ma,
+                            const bsfit_piece *B, const seg_model *mb, double sigma) {
   size_t na = arc_reach(s, A, ma, A->count < EVIDENCE_REACH ? A->count : EVIDENCE_REACH, 1);
   size_t nb = arc_reach(s, B, mb, B->count < EVIDENCE_REACH ? B->count : EVIDENCE_REACH, 0), k,
          first, n;

@@ -12,7 +12,7 @@
 /* The radius of the circle tangent to two lines (its centre V + u k r) that fits F's
 ** samples best: Gauss-Newton on the geometric distances, from r. Its residual sum of
 ** squares into *rss; -1 when it fails. */
-static double fillet_radius(const section *s, const bsfit_piece *F, const double *V,
+static double fillet_radius(const seg_section *s, const bsfit_piece *F, const double *V,
                             const double *u, double k, double r, double *rss) {
   int it;
   size_t j;
@@ -44,8 +44,8 @@ static double fillet_radius(const section *s, const bsfit_piece *F, const double
 ** times as much (2.4 at a right angle): the refit is taken only when its samples do not
 ** tell against it, i.e. it adds at most 9 sigma^2 to their residual (the chi-square of its
 ** two fewer parameters at 99%). The tangent points move to the new circle. */
-static void refit_fillet(const section *s, bsfit_piece *A, const model *ma, bsfit_piece *F,
-                         model *mf, bsfit_piece *B, const model *mb) {
+static void refit_fillet(const seg_section *s, bsfit_piece *A, const seg_model *ma, bsfit_piece *F,
+                         seg_model *mf, bsfit_piece *B, const seg_model *mb) {
   double V[2], u[2], k, r, c[2], f[2], t[2], rms = 0, un, cosphi, rss;
   if (!bsfit__meet_lines(&ma->line, &mb->line, V)) return;
   u[0] = mb->line.d[0] - ma->line.d[0];
@@ -74,8 +74,8 @@ static void refit_fillet(const section *s, bsfit_piece *A, const model *ma, bsfi
 /* Samples of line A past its tangent point with fillet F (their feet beyond A's end along
 ** A), and of B before it, lie on the fillet: a line that held them (they were within its
 ** tolerance) bends the fillet's radius by percents. They go to F; returns how many moved. */
-static size_t claim_for_fillet(const section *s, bsfit_piece *A, const model *ma, bsfit_piece *F,
-                               bsfit_piece *B, const model *mb) {
+static size_t claim_for_fillet(const seg_section *s, bsfit_piece *A, const seg_model *ma,
+                               bsfit_piece *F, bsfit_piece *B, const seg_model *mb) {
   size_t moved = 0;
   while (A->count > s->min_len[LINE]) {
     const double *q = sample(s, A->first + A->count - 1);
@@ -90,7 +90,7 @@ static size_t claim_for_fillet(const section *s, bsfit_piece *A, const model *ma
   return moved;
 }
 
-void bsfit__refit_fillets(const section *s, bsfit_piece *p, model *md, size_t np) {
+void bsfit__refit_fillets(const seg_section *s, bsfit_piece *p, seg_model *md, size_t np) {
   size_t i;
   int pass;
   for (pass = 0; pass < 2; pass++)

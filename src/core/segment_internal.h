@@ -17,7 +17,7 @@
 #define FREE BSFIT_PIECE_FREE
 
 /* what the segmentation works on */
-typedef struct section {
+typedef struct seg_section {
   const double *pts;
   size_t m;
   int closed;
@@ -31,24 +31,26 @@ typedef struct section {
   size_t longest[2];         /* the longest run of each kind */
   double penalty;            /* sigma^2 per parameter, with mom */
   const bsfit_allocator *a;
-} section;
+} seg_section;
 
 /* distinct samples (steps longer than tol, plus one) among n from first */
-static inline size_t distinct(const struct section *s, size_t first, size_t n) {
+static inline size_t distinct(const seg_section *s, size_t first, size_t n) {
   return s->gaps[first + n - 1] - s->gaps[first] + 1;
 }
 
 /* a model of either kind */
-typedef struct model {
+typedef struct seg_model {
   int kind;
   bsfit__line line;
   bsfit__circle circle;
   double orient; /* arcs: +1 counter-clockwise along the samples, -1 clockwise */
-} model;
+} seg_model;
 
-static inline const double *sample(const section *s, size_t i) { return s->pts + 2 * (i % s->m); }
+static inline const double *sample(const seg_section *s, size_t i) {
+  return s->pts + 2 * (i % s->m);
+}
 
-static inline bsfit__run run_of(const section *s, size_t first, size_t n) {
+static inline bsfit__run run_of(const seg_section *s, size_t first, size_t n) {
   bsfit__run r;
   r.pts = s->pts;
   r.m = s->m;
@@ -57,25 +59,25 @@ static inline bsfit__run run_of(const section *s, size_t first, size_t n) {
   return r;
 }
 
-static inline double model_dist(const model *md, const double *x) {
+static inline double model_dist(const seg_model *md, const double *x) {
   return md->kind == LINE ? bsfit__line_dist(&md->line, x) : bsfit__circle_dist(&md->circle, x);
 }
 
 /* segment_evidence.c: how much worse one smooth curve explains the samples of A and B
 ** next to their corner than their two models, in units of sigma^2 */
-double bsfit__join_evidence(const section *s, const bsfit_piece *A, const model *ma,
-                            const bsfit_piece *B, const model *mb, double sigma);
+double bsfit__join_evidence(const seg_section *s, const bsfit_piece *A, const seg_model *ma,
+                            const bsfit_piece *B, const seg_model *mb, double sigma);
 
 /* segment.c: refits p's model md to its samples, and sets p's max, rms (and centre,
 ** radius for arcs) */
-void bsfit__segment_refit(const section *s, bsfit_piece *p, model *md);
+void bsfit__segment_refit(const seg_section *s, bsfit_piece *p, seg_model *md);
 
 /* segment.c: the model's foot point f of x and its unit tangent t there (along the
 ** traversal) */
-void bsfit__model_foot(const model *md, const double *x, double *f, double *t);
+void bsfit__model_foot(const seg_model *md, const double *x, double *f, double *t);
 
 /* segment_fillets.c: each arc between two lines it meets tangentially is refitted with its
 ** circle tangent to both; under noise it first takes their samples past its tangent points */
-void bsfit__refit_fillets(const section *s, bsfit_piece *p, model *md, size_t np);
+void bsfit__refit_fillets(const seg_section *s, bsfit_piece *p, seg_model *md, size_t np);
 
 #endif
