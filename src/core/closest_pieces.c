@@ -80,10 +80,16 @@ static void span_bezier(const bsfit__pieces *pc, size_t s, double *B) {
   }
 }
 
+#if defined(__GNUC__)
+#  define PIECE_INLINE static inline __attribute__((always_inline))
+#else
+#  define PIECE_INLINE static inline
+#endif
+
 /* The squared distance from x to the segment [A, B] (d coordinates; inv: 1 / |B - A|^2,
 ** 0 when A = B). */
-static double seg_dist2(const double *x, const double *A, const double *B, double inv,
-                        size_t d) {
+PIECE_INLINE double seg_dist2(const double *x, const double *A, const double *B, double inv,
+                              const size_t d) {
   double ax = 0.0, t, r = 0.0;
   size_t q;
   for (q = 0; q < d; q++) ax += (x[q] - A[q]) * (B[q] - A[q]);
@@ -320,6 +326,7 @@ typedef struct search {
   double *u, *d2;
   double r, t; /* a foot replaces the one found when nearer than r (squared: t): a
                ** tolerance nearer; r < 0 when the foot is within the tolerance of P */
+  int critical; /* the foot given is where Newton converged, inside its bracket */
   bsfit__polish_fn polish;
   void *ctx;
 } search;
@@ -362,9 +369,12 @@ static int decide(search *S, const double *B, double ua, double ub, int depth) {
   v = slope_changes(pc, N, W, &first, &at);
   if (v == 0 || (v == 1 && first > 0)) return 0; /* the minimum is at an end */
   if (v == 1) {
-    /* a single minimum inside: Newton from the foot when it lies inside the piece (one
-    ** evaluation when it is that minimum; it may have stopped at its bracket's end) */
-    try_foot(S, ua, ub, *S->u > ua && *S->u < ub ? *S->u : ua + at * (ub - ua));
+    /* a single minimum inside: the foot given, when it lies inside the piece and Newton
+    ** converged there (not in a sliver, where its test of convergence, relative to |u|,
+    ** passes anywhere); else Newton from the foot (inside) or from the sign change */
+    int inside = *S->u > ua && *S->u < ub;
+    if (!(inside && S->critical && ub - ua > 1e-6 * (fabs(ua) + fabs(ub))))
+      try_foot(S, ua, ub, inside ? *S->u : ua + at * (ub - ua));
     return 0;
   }
   if (depth < PIECE_MAX_DEPTH && ua < 0.5 * (ua + ub) && 0.5 * (ua + ub) < ub) return 1;
@@ -399,33 +409,79 @@ static void search_span(search *S, size_t i) {
 
 /* Whether strip S may hold a point nearer to P than r (r >= 0): its chord is nearer
 ** than r plus its width. Squared: no root per node. */
-static int strip_near(const double *S, const double *P, double r, size_t d) {
+PIECE_INLINE int strip_near_d(const double *S, const double *P, double r, const size_t d) {
   double g = r + S[2 * d];
   return seg_dist2(P, S, S + d, S[2 * d + 1], d) < g * g;
 }
 
-void bsfit__pieces_search(bsfit__pieces *pc, const double *P, double *u, double *d2,
-                          bsfit__polish_fn polish, void *ctx) {
+/* strip_near_d with d a constant for sections (2) and space curves (3): the loops unroll */
+static int strip_near(const double *S, const double *P, double r, size_t d) {
+  if (d == 2) return strip_near_d(S, P, r, 2);
+  if (d == 3) return strip_near_d(S, P, r, 3);
+  return strip_near_d(S, P, r, d);
+}
+
+/* The tree below node (at `level`, pieces [lo, hi)) searched depth first, in the order of
+** the parameter; a foot found prunes what follows. */
+static void search_tree(search *S, size_t node, size_t lo, size_t hi) {
+  bsfit__pieces *pc = S->pc;
   size_t stack[PIECE_TREE_STACK][3], top = 0, d = (size_t)pc->d, k = STRIP(d);
-  search S;
-  S.pc = pc, S.P = P, S.u = u, S.d2 = d2, S.polish = polish, S.ctx = ctx;
-  set_threshold(&S);
-  if (pc->ns == 0) return;
-  stack[top][0] = 0, stack[top][1] = 0, stack[top][2] = pc->ns, top++;
-  /* depth first, in the order of the parameter; a foot found prunes what follows */
-  while (top > 0 && S.r >= 0.0) {
-    size_t node, lo, hi, i, c, mid;
+  stack[top][0] = node, stack[top][1] = lo, stack[top][2] = hi, top++;
+  while (top > 0 && S->r >= 0.0) {
+    size_t i, c, mid;
     top--;
     node = stack[top][0], lo = stack[top][1], hi = stack[top][2];
-    if (lo >= hi || !strip_near(pc->strip + node * k, P, S.r, d)) continue;
+    if (lo >= hi || !strip_near(pc->strip + node * k, S->P, S->r, d)) continue;
     if (2 * node + 1 >= pc->nnode) {
-      for (i = lo; i < hi && S.r >= 0.0; i++)
-        if (strip_near(pc->sstrip + i * k, P, S.r, d)) search_span(&S, i);
+      for (i = lo; i < hi && S->r >= 0.0; i++)
+        if (strip_near(pc->sstrip + i * k, S->P, S->r, d)) search_span(S, i);
       continue;
     }
     c = 2 * node + 1, mid = lo + (hi - lo) / 2;
     stack[top][0] = c + 1, stack[top][1] = mid, stack[top][2] = hi, top++;
     stack[top][0] = c, stack[top][1] = lo, stack[top][2] = mid, top++;
+  }
+}
+
+/* The piece holding parameter u (wrapped into the domain), by bisection of the spans. */
+static size_t piece_of(const bsfit__pieces *pc, double u) {
+  const double *U = pc->c->knots;
+  size_t lo = 0, hi = pc->ns;
+  u = bsfit__curve_wrap(pc->c, u);
+  while (hi - lo > 1) {
+    size_t mid = lo + (hi - lo) / 2;
+    if (U[pc->span[mid]] <= u) lo = mid;
+    else hi = mid;
+  }
+  return lo;
+}
+
+void bsfit__pieces_search(bsfit__pieces *pc, const double *P, double *u, double *d2,
+                          int critical, bsfit__polish_fn polish, void *ctx) {
+  size_t path[PIECE_TREE_STACK][3], node = 0, lo = 0, hi = pc->ns, f;
+  int level;
+  search S;
+  S.pc = pc, S.P = P, S.u = u, S.d2 = d2, S.polish = polish, S.ctx = ctx;
+  S.critical = critical;
+  set_threshold(&S);
+  if (pc->ns == 0 || S.r < 0.0) return;
+  /* from the leaf of the foot's piece up: each ancestor's other child in turn (the foot
+  ** prunes most of them; the path itself holds the foot, no test needed) */
+  f = piece_of(pc, *u);
+  for (level = 0; level < pc->depth; level++) {
+    size_t mid = lo + (hi - lo) / 2;
+    path[level][0] = node, path[level][1] = lo, path[level][2] = hi;
+    node = 2 * node + 1;
+    if (f >= mid) node++, lo = mid;
+    else hi = mid;
+  }
+  search_tree(&S, node, lo, hi);
+  for (level = pc->depth - 1; level >= 0 && S.r >= 0.0; level--) {
+    size_t pn = path[level][0], plo = path[level][1], phi = path[level][2];
+    size_t pmid = plo + (phi - plo) / 2, c = 2 * pn + 1;
+    if (node == c) search_tree(&S, c + 1, pmid, phi);
+    else search_tree(&S, c, plo, pmid);
+    node = pn;
   }
 }
 

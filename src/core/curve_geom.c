@@ -467,7 +467,7 @@ static double polish(void *ctx, double lo, double hi, double u0, double *d2) {
 static double closest_global(foot_ctx *F, bsfit__pieces *pc, double v, double h,
                              int maybe_knot, double *d2) {
   double u = closest_from(F, v, h, maybe_knot, d2);
-  bsfit__pieces_search(pc, F->P, &u, d2, polish, F);
+  bsfit__pieces_search(pc, F->P, &u, d2, u > F->lo && u < F->hi, polish, F);
   return u;
 }
 

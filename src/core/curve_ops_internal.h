@@ -116,9 +116,10 @@ typedef double (*bsfit__polish_fn)(void *ctx, double lo, double hi, double u0, d
 bsfit_err bsfit__pieces_init(bsfit__pieces *pc, const bsfit_curve *c, const bsfit_allocator *a,
                              bsfit_status *st);
 /* Replaces the foot (*u, *d2) of P by a nearer one (found by `polish`) wherever a piece
-** comes nearer by more than the tolerance. */
+** comes nearer by more than the tolerance. critical: Newton converged at *u inside its
+** bracket (a piece with one minimum that holds it needs no other). */
 void bsfit__pieces_search(bsfit__pieces *pc, const double *P, double *u, double *d2,
-                          bsfit__polish_fn polish, void *ctx);
+                          int critical, bsfit__polish_fn polish, void *ctx);
 void bsfit__pieces_free(bsfit__pieces *pc);
 
 /* The post-condition of every operation that builds a curve: tmp passes
