@@ -288,6 +288,9 @@ static int slope_changes(const bsfit__pieces *pc, const double *N, const double 
   size_t p2 = 2 * (size_t)pc->p, i, n;
   double G[PIECE_COEF], dN[PIECE_COEF], dW[PIECE_COEF], T[PIECE_COEF];
   int changes = 0, sign = 0;
+  *first = 0;
+  *at = 0.5;
+  if (p2 == 0) return 0; /* degree 0: the piece is a point */
   for (i = 0; i < p2; i++) dN[i] = N[i + 1] - N[i];
   if (W == NULL) {
     memcpy(G, dN, p2 * sizeof(double));
@@ -299,8 +302,6 @@ static int slope_changes(const bsfit__pieces *pc, const double *N, const double 
     n = 2 * p2;
     for (i = 0; i < n; i++) G[i] -= T[i];
   }
-  *first = 0;
-  *at = 0.5;
   for (i = 0; i < n; i++) {
     int sg = G[i] > 0.0 ? 1 : (G[i] < 0.0 ? -1 : 0);
     if (sg == 0) continue;

@@ -217,3 +217,35 @@ T.test("closest points near spikes, hairpins and slivers are the global ones", f
   end
   print(("# worst (closest - dense) / (dense + extent): %.3g"):format(worst_ratio))
 end)
+
+T.test("closest points on curves of degree 0 and high degree, rational or not", function()
+  local uniform, gauss = synth.rng(7100)
+  local off, points = 0, 0
+  for trial = 1, 40 do
+    local p = ({ 0, 6, 9, 12 })[1 + trial % 4]
+    local n = p + 1 + math.floor(uniform() * 6)
+    local K = {}
+    for _ = 1, p + 1 do K[#K + 1] = 0 end
+    for i = 1, n - p - 1 do K[#K + 1] = i / (n - p) end
+    for _ = 1, p + 1 do K[#K + 1] = 1 end
+    if p == 0 then K[1] = 0; K[#K] = 1 end
+    local cp = {}
+    for j = 1, n do cp[j] = { uniform() * 4, uniform() * 4 } end
+    local C = bs.curve.new { degree = p, knots = K, control_points = cp,
+                             weights = weights(uniform, n, trial % 2 == 0) }
+    local ext = extent(C)
+    local P = {}
+    for q = 1, 8 do P[q] = { 4 * uniform() + 0.1 * gauss(), 4 * uniform() } end
+    local _, dm = C:closest_many(bs.points.new(P))
+    for q, X in ipairs(P) do
+      local t1, d1 = C:closest(X[1], X[2])
+      local truth = dense(C, X[1], X[2], distinct(K))
+      T.ok(d1 == dm:get(q), "closest and closest_many agree")
+      T.ok(math.abs(math.sqrt(dist2(C, t1, X[1], X[2])) - d1) <= 1e-12 * (ext + d1),
+           "the distance is |C(t) - P|")
+      if d1 > truth + 1e-9 * truth + 1e-13 * ext + 1e-14 * (ext + truth) then off = off + 1 end
+      points = points + 1
+    end
+  end
+  T.ok(off == 0, ("%d of %d points farther than the dense measure"):format(off, points))
+end)
