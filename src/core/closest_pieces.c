@@ -16,10 +16,12 @@
 **     from - to + the piece has a single minimum, found by Newton inside the piece; with
 **     none, or from + to -, its minimum is at an end;
 **   - otherwise the piece is halved (de Casteljau) and both halves decided the same way.
-** Spans are reached through a tree of boxes (each span's control points, which hold its
-** piece: weights are positive), so a point near the curve looks at the few spans whose
-** boxes come within the distance found: O(log spans) per point. Spans of zero length are
-** no piece; a sliver span is a piece like any other, tiny.
+** Pieces are reached through a strip tree (Ballard 1981: each node a chord and a width
+** that holds its pieces, the control points' hull lying within it: weights are positive),
+** searched from the foot's leaf up, so a point near the curve looks at the few pieces that
+** come within the distance found: O(log spans) per point. Spans of zero length are no
+** piece; a sliver span is a piece like any other, tiny (Newton in it is finished a double
+** at a time by curve_geom.c).
 **
 ** The guarantee: the distance returned is at most (1 + PIECE_REL) times the true minimum
 ** plus PIECE_ABS times the extent of the control points (and the rounding of the
@@ -34,14 +36,14 @@
 
 #define PIECE_REL 1e-9        /* relative tolerance of the distance */
 #define PIECE_ABS 1e-13       /* absolute tolerance, times the curve's extent */
-#define PIECE_LEAF 4          /* spans per leaf of the box tree at most */
+#define PIECE_LEAF 4          /* pieces per leaf of the strip tree at most */
 #define PIECE_MAX_DEPTH 40    /* halvings of a span at most */
 #define PIECE_TREE_STACK 64   /* pending nodes: one per level at most */
 #define PIECE_COEF (4 * BSFIT_MAX_DEGREE + 1)
 #define STRIP(d) (2 * (d) + 2) /* doubles of a strip: A, B, width, 1 / |B - A|^2 (or 0) */
 
 /* {====================================================================
-** Building: the boxes, the binomials, the scratch
+** Building: the pieces, the strips, the binomials, the scratch
 ** ===================================================================== */
 
 /* Room for the blocks below, doubles first: strips (nnode * (2d+1)), binomials
@@ -73,7 +75,8 @@ static void span_bezier(const bsfit__pieces *pc, size_t s, double *B) {
       double x = r <= p - i ? U[s] : U[s + 1];
       for (j = p; j >= r; j--) {
         double lo = U[s - p + j], al = (x - lo) / (U[s + 1 + j - r] - lo);
-        for (q = 0; q < hd; q++) T[j * hd + q] = (1.0 - al) * T[(j - 1) * hd + q] + al * T[j * hd + q];
+        for (q = 0; q < hd; q++)
+          T[j * hd + q] = (1.0 - al) * T[(j - 1) * hd + q] + al * T[j * hd + q];
       }
     }
     memcpy(B + i * hd, T + p * hd, hd * sizeof(double));
@@ -163,11 +166,12 @@ static void strip_node(bsfit__pieces *pc, size_t node, int level, size_t lo, siz
 
 static void fill_binomials(bsfit__pieces *pc) {
   size_t n, k, nb = 4 * (size_t)pc->p + 1;
+  double *C = pc->binom;
   for (n = 0; n < nb; n++)
     for (k = 0; k < nb; k++)
-      pc->binom[n * nb + k] = k == 0 || k == n ? 1.0
-                              : k > n ? 0.0
-                                      : pc->binom[(n - 1) * nb + k - 1] + pc->binom[(n - 1) * nb + k];
+      C[n * nb + k] = k == 0 || k == n ? 1.0
+                      : k > n          ? 0.0
+                                       : C[(n - 1) * nb + k - 1] + C[(n - 1) * nb + k];
 }
 
 static double extent(const bsfit_curve *c) {
@@ -183,7 +187,8 @@ static double extent(const bsfit_curve *c) {
 
 bsfit_err bsfit__pieces_init(bsfit__pieces *pc, const bsfit_curve *c, const bsfit_allocator *a,
                              bsfit_status *st) {
-  size_t s, ns = 0, nd, bytes, w = ((size_t)c->degree + 1) * ((size_t)c->dim + (c->weights != NULL));
+  size_t s, ns = 0, nd, bytes;
+  size_t w = ((size_t)c->degree + 1) * ((size_t)c->dim + (c->weights != NULL));
   memset(pc, 0, sizeof *pc);
   pc->c = c;
   pc->p = c->degree;

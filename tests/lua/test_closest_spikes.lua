@@ -90,7 +90,9 @@ local function star(uniform, p, rational)
   end
   for j = 0, n - 1 do
     local prev, next = r[(j - 1) % n][1], r[(j + 1) % n][1]
-    if r[j][1] >= prev and r[j][1] > next and r[j][1] > 4 then tips[#tips + 1] = { r[j][2], r[j][3] } end
+    if r[j][1] >= prev and r[j][1] > next and r[j][1] > 4 then
+      tips[#tips + 1] = { r[j][2], r[j][3] }
+    end
   end
   return C, #tips > 0 and tips or { cp[2] }
 end
