@@ -152,25 +152,27 @@ BSFIT_API bsfit_err bsfit_curve_elevate(const bsfit_curve *c, int t, bsfit_curve
 BSFIT_API bsfit_err bsfit_curve_length(const bsfit_curve *c, double a, double b, double *len,
                                        bsfit_status *st);
 
-/** Closest point of the curve to P: 8 samples per span, then a safeguarded Newton descent
-** on f(u) = C'(u).(C(u) - P) between the neighbours of the best sample (clamped to the
-** domain of an open curve, wrapped for a periodic one). Finds the global minimum unless
-** a narrower valley hides between two samples.
+/** Closest point of the curve to P: the global minimum of the distance, to within 1e-9
+** of it plus 1e-13 of the control points' extent. 8 samples per span and a safeguarded
+** Newton descent on f(u) = C'(u).(C(u) - P) from the best, then a global stage: each span
+** as a Bezier piece, ruled out by the Bernstein coefficients of its squared distance or
+** searched (a strip tree over the spans: O(log n) pieces for a point near the curve).
 ** @param[in]  P     dim coordinates.
 ** @param[out] u     the foot's parameter, in [a, b] ([a, b) for periodic curves).
 ** @param[out] dist  |C(u) - P|, or NULL.
 ** @param[in]  a     allocator of the scratch (the span polynomials of a cubic, 4 dim + 1
-**                   per control point); NULL = realloc.
+**                   per control point; the Bezier pieces and their tree); NULL = realloc.
 ** @return BSFIT_OK, BSFIT_EINVAL (empty curve, P or u NULL), BSFIT_ENONFINITE (P),
 **         BSFIT_ERANGE (control points all within 1e-100 of each other but not equal:
-**         the squared distances would underflow), any code of bsfit_curve_validate. */
+**         the squared distances would underflow), BSFIT_ENOMEM, any code of
+**         bsfit_curve_validate. */
 BSFIT_API bsfit_err bsfit_curve_closest(const bsfit_curve *c, const double *P, double *u,
                                         double *dist, const bsfit_allocator *a,
                                         bsfit_status *st);
 
 /** bsfit_curve_closest for many points at once: the coarse samples (8 per knot span) are
-** evaluated once, then each point is bracketed by its nearest sample and refined by
-** Newton, exactly as bsfit_curve_closest does (same results).
+** evaluated once, then each point is bracketed by its nearest sample, refined by Newton and
+** proved by the global stage, exactly as bsfit_curve_closest does (same results).
 ** @param[in]  pts  m points, dim doubles each.
 ** @param[out] u    m parameters of the closest points.
 ** @param[out] dist m distances, or NULL.

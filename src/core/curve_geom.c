@@ -421,10 +421,61 @@ static double closest_from(foot_ctx *F, double v, double h, int maybe_knot, doub
   return u;
 }
 
+/* A sliver piece (between knots 1e-13 apart, as auto leaves at corners) spans a few
+** thousand doubles, and Newton's test of convergence, relative to |u|, stops anywhere in
+** it: there the descent goes on a double at a time, in strides that double while the
+** distance falls (a piece that polish is called on has one minimum, or is tiny). */
+static double ulp_descent(foot_ctx *F, double u, double *d2) {
+  double D[3 * 4];
+  int dir, k;
+  for (dir = -1; dir <= 1; dir += 2) {
+    double one = fabs(nextafter(u, dir < 0 ? -INFINITY : INFINITY) - u), step = one;
+    for (k = 0; k < 256; k++) {
+      double x = clampd(u + (double)dir * step, F->lo, F->hi), e2;
+      if (x == u) break;
+      e2 = sample_at(F, x, D);
+      if (e2 < *d2) {
+        u = x, *d2 = e2, step *= 2.0;
+      } else if (step > one) {
+        step = one;
+      } else {
+        break;
+      }
+    }
+  }
+  return u;
+}
+
+/* The global stage's Newton: inside [lo, hi] only, from u0. The curve at hi is evaluated
+** in the span after it, whose derivative at a corner leads elsewhere (a descent that
+** reached it stopped there, beside the piece's own minimum): the piece ends one double
+** before hi, and the next piece, which starts at hi, holds that point. */
+static double polish(void *ctx, double lo, double hi, double u0, double *d2) {
+  foot_ctx *F = ctx;
+  double slo = F->lo, shi = F->hi, u;
+  F->lo = lo;
+  F->hi = hi > lo ? nextafter(hi, lo) : hi;
+  u = foot_newton(F, clampd(u0, F->lo, F->hi), NEWTON_MAX_ITERS, d2);
+  if (hi - lo <= 1e-6 * (fabs(lo) + fabs(hi))) u = ulp_descent(F, u, d2);
+  F->lo = slo;
+  F->hi = shi;
+  return u;
+}
+
+/* The foot of F->P from the nearest sample v (step h), then proved the nearest or
+** replaced by the global stage (closest_pieces.c). */
+static double closest_global(foot_ctx *F, bsfit__pieces *pc, double v, double h,
+                             int maybe_knot, double *d2) {
+  double u = closest_from(F, v, h, maybe_knot, d2);
+  bsfit__pieces_search(pc, F->P, &u, d2, u > F->lo && u < F->hi, polish, F);
+  return u;
+}
+
 bsfit_err bsfit_curve_closest(const bsfit_curve *c, const double *P, double *u, double *dist,
                               const bsfit_allocator *al, bsfit_status *st) {
   foot_ctx F;
   span_polys sp;
+  bsfit__pieces pc;
   double a, b, D[3 * 4], best = INFINITY, ubest = 0.0, hbest = 0.0, d2;
   size_t s, i, p;
   bsfit_err e = bsfit_curve_validate(c, st);
@@ -435,6 +486,8 @@ bsfit_err bsfit_curve_closest(const bsfit_curve *c, const double *P, double *u, 
     return bsfit__fail(st, BSFIT_ENONFINITE, "point P is not finite");
   bsfit_curve_domain(c, &a, &b);
   p = (size_t)c->degree;
+  e = bsfit__pieces_init(&pc, c, al, st);
+  if (e != BSFIT_OK) return e;
   foot_init(&F, c, polys_new(c, al, &sp));
   F.P = P;
   F.lo = a;
@@ -458,10 +511,11 @@ bsfit_err bsfit_curve_closest(const bsfit_curve *c, const double *P, double *u, 
     F.lo = fmax(F.lo, a);
     F.hi = fmin(F.hi, b);
   }
-  ubest = closest_from(&F, ubest, hbest, 1, &d2);
+  ubest = closest_global(&F, &pc, ubest, hbest, 1, &d2);
   *u = bsfit__curve_wrap(c, ubest);
   if (dist) *dist = sqrt(d2);
   polys_free(F.poly);
+  bsfit__pieces_free(&pc);
   return bsfit__ok(st);
 }
 
@@ -486,7 +540,8 @@ static double sample_param(const sample_grid *G, size_t k, double *h) {
 }
 
 /* Newton from each point's nearest sample, looking at the interrupt flag every 4096 */
-static bsfit_err closest_loop(foot_ctx *F, const bsfit__nearest *nn, const sample_grid *G,
+static bsfit_err closest_loop(foot_ctx *F, bsfit__pieces *pc, const bsfit__nearest *nn,
+                              const sample_grid *G,
                               const double *pts, size_t m, double *u, double *dist,
                               const bsfit_allocator *al, bsfit_status *st) {
   const bsfit_curve *c = F->c;
@@ -503,7 +558,7 @@ static bsfit_err closest_loop(foot_ctx *F, const bsfit__nearest *nn, const sampl
     F->lo = c->periodic ? v - h : fmax(v - h, F->a);
     F->hi = c->periodic ? v + h : fmin(v + h, F->b);
     /* only a span's ends are knots: no other knot lies inside a span */
-    u[i] = bsfit__curve_wrap(c, closest_from(F, v, h, v == U[s] || v == U[s + 1], &d2));
+    u[i] = bsfit__curve_wrap(c, closest_global(F, pc, v, h, v == U[s] || v == U[s + 1], &d2));
     if (dist) dist[i] = sqrt(d2);
   }
   return BSFIT_OK;
@@ -530,6 +585,7 @@ bsfit_err bsfit_curve_closest_many(const bsfit_curve *c, const double *pts, size
   span_polys sp;
   sample_grid G;
   bsfit__nearest nn;
+  bsfit__pieces pc;
   bsfit_err e = bsfit_curve_validate(c, st);
   if (e == BSFIT_OK) e = check_extent(c, st);
   if (e != BSFIT_OK) return e;
@@ -550,10 +606,12 @@ bsfit_err bsfit_curve_closest_many(const bsfit_curve *c, const double *pts, size
   foot_init(&F, c, polys_new(c, al, &sp));
   F.P = pts; /* unused by the sampling below */
   sample_spans(&F, (size_t *)(void *)(smp + K * d), smp);
-  e = bsfit__nearest_init(&nn, smp, K, d, m, al, st);
+  e = bsfit__pieces_init(&pc, c, al, st);
   if (e == BSFIT_OK) {
-    e = closest_loop(&F, &nn, &G, pts, m, u, dist, al, st);
+    e = bsfit__nearest_init(&nn, smp, K, d, m, al, st);
+    if (e == BSFIT_OK) e = closest_loop(&F, &pc, &nn, &G, pts, m, u, dist, al, st);
     bsfit__nearest_free(&nn);
+    bsfit__pieces_free(&pc);
   }
   polys_free(F.poly);
   bsfit__free(al, smp, bytes);

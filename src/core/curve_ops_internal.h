@@ -87,6 +87,41 @@ bsfit_err bsfit__nearest_init(bsfit__nearest *nn, const double *smp, size_t K, s
 size_t bsfit__nearest_find(const bsfit__nearest *nn, const double *P);
 void bsfit__nearest_free(bsfit__nearest *nn);
 
+/* closest_pieces.c: the global stage of the closest-point searches. Every span of positive
+** length as a Bezier piece, reached through a tree of its control points' boxes; a search
+** proves the foot found is the nearest to a tolerance (a relative 1e-9 of the distance
+** plus 1e-13 of the curve's extent) or replaces it by a nearer one. */
+typedef struct bsfit__pieces {
+  const bsfit_curve *c;
+  int p, d, hd;        /* degree, dimension, doubles per homogeneous point */
+  size_t ns;           /* spans of positive length */
+  int depth;           /* of the tree's leaves */
+  size_t nnode;        /* 2^(depth+1) - 1 */
+  double abs_tol;      /* the absolute part of the tolerance */
+  double *strip;       /* nnode strips: a chord's ends and a width, 2*d+1 doubles each */
+  double *binom;       /* binomial coefficients, (4p+1)^2 */
+  double *stack;       /* the pieces of one span being halved */
+  double *bez;         /* ns pieces of (p+1) hd doubles: each span's Bezier control points */
+  double *sstrip;      /* ns strips of the pieces */
+  size_t *span;        /* ns: the spans of positive length, in order */
+  void *block;         /* all of the above in one allocation of `bytes` */
+  size_t bytes;
+  bsfit_allocator alloc;
+} bsfit__pieces;
+
+/* Newton inside [lo, hi] from u0: the foot's parameter, *d2 its squared distance. */
+typedef double (*bsfit__polish_fn)(void *ctx, double lo, double hi, double u0, double *d2);
+
+/* Builds the tree of c's spans (O(n p d)); BSFIT_ENOMEM (then no free needed). */
+bsfit_err bsfit__pieces_init(bsfit__pieces *pc, const bsfit_curve *c, const bsfit_allocator *a,
+                             bsfit_status *st);
+/* Replaces the foot (*u, *d2) of P by a nearer one (found by `polish`) wherever a piece
+** comes nearer by more than the tolerance. critical: Newton converged at *u inside its
+** bracket (a piece with one minimum that holds it needs no other). */
+void bsfit__pieces_search(bsfit__pieces *pc, const double *P, double *u, double *d2,
+                          int critical, bsfit__polish_fn polish, void *ctx);
+void bsfit__pieces_free(bsfit__pieces *pc);
+
 /* The post-condition of every operation that builds a curve: tmp passes
 ** bsfit_curve_validate (finite, in range, knots sound). Else tmp is freed and the
 ** validation's code returned, its message prefixed by what the operation was. O(n), as

@@ -118,10 +118,11 @@ static void golden_step(bracket *b) {
 #define RECHECK_PASSES 4
 
 /* Samples farther than half the tolerance projected again, from their neighbours' feet:
-** a foot can stop at a corner next to a sliver span (auto leaves pieces of 1e-11 of the
-** period between two C0 knots, and closest-point searches bracket by the sliver's step)
-** though a nearer one lies just past it, where the neighbours' are. The nearer foot is
-** kept: each is a point of Y, so a distance only comes down to a true one. */
+** a projection (Newton from the sample's own parameter) can stop in a valley next to the
+** true foot, where the neighbours' are. The nearer foot is kept: each is a point of Y, so
+** a distance only comes down to a true one. The way back needs none: its feet are global
+** closest points (bsfit_curve_closest_many, also next to the sliver spans that auto leaves
+** between two C0 knots, which stopped the old sample-bracketed search at the corner). */
 static bsfit_err recheck(way *w, double tol, const bsfit_allocator *a, bsfit_status *st) {
   size_t n = w->n, j, k, pass, bytes = n * (sizeof(size_t) + 10 * sizeof(double));
   size_t *idx = bsfit__alloc(a, bytes);
@@ -150,13 +151,13 @@ static bsfit_err recheck(way *w, double tol, const bsfit_allocator *a, bsfit_sta
 }
 
 /* The largest distance along the way (*worst): the samples', and the peaks' refined where
-** the samples pass. */
-static bsfit_err refine(way *w, double tol, double *worst, const bsfit_allocator *a,
-                        bsfit_status *st) {
+** the samples pass. `global`: the feet are global closest points already (no recheck). */
+static bsfit_err refine(way *w, double tol, int global, double *worst,
+                        const bsfit_allocator *a, bsfit_status *st) {
   size_t n = w->n, nb, j, it, bytes = n * (sizeof(bracket) + 10 * sizeof(double));
   bracket *B;
   double *P;
-  bsfit_err e = recheck(w, tol, a, st);
+  bsfit_err e = global ? BSFIT_OK : recheck(w, tol, a, st);
   if (e != BSFIT_OK) return e;
   for (j = 0, *worst = 0; j < n; j++) *worst = fmax(*worst, w->d[j]);
   if (*worst > tol) return BSFIT_OK; /* it fails already */
@@ -209,7 +210,7 @@ static bsfit_err way_back(const bsfit_curve *c, const bsfit_curve *f, const doub
   for (i = 0; i < n; i++) bsfit__curve_eval_unchecked(f, x[i], P + 3 * i);
   e = bsfit_curve_closest_many(c, P, n, y, d, a, st);
   w.X = f, w.Y = c, w.x = x, w.y = y, w.d = d, w.n = n;
-  if (e == BSFIT_OK) e = refine(&w, tol, dev, a, st);
+  if (e == BSFIT_OK) e = refine(&w, tol, 1, dev, a, st);
   bsfit__free(a, x, bytes);
   return e;
 }
@@ -227,7 +228,7 @@ bsfit_err bsfit__skin_distance(const bsfit_curve *c, const bsfit_curve *f, const
   memcpy(y, s, m * sizeof(double));
   e = bsfit_curve_project_many(f, pts, m, y, d, PROJECT_ITERS, a, st);
   w.X = c, w.Y = f, w.x = t, w.y = y, w.d = d, w.n = m;
-  if (e == BSFIT_OK) e = refine(&w, tol, dev, a, st);
+  if (e == BSFIT_OK) e = refine(&w, tol, 0, dev, a, st);
   if (e == BSFIT_OK && *dev <= tol) e = way_back(c, f, s, m, tol, &back, a, st);
   *dev = fmax(*dev, back);
   bsfit__free(a, y, bytes);

@@ -121,6 +121,8 @@ static bsfit_err set_knots(bsfit_curve *c, const double *t, const bsfit_allocato
 ** Merging the C0 knots (multiplicity p) of different sections
 ** ===================================================================== */
 
+#define MERGE_STRETCH 1.5 /* a piece between corners keeps its length within this factor */
+
 /* A C0 knot of one section. anchored: it may not move (the seam; the ends of a section's
 ** piece across the seam, whose map would move the seam; a knot next to the period's end). */
 typedef struct corner {
@@ -187,9 +189,38 @@ static void map_pieces(const bsfit_curve *c, const double *X, const double *R, s
   t[N] = 1.0;
 }
 
+/* Whether the piece from corner j to j + 1 keeps its length within a factor MERGE_STRETCH
+** (the period's end after the last corner when the seam is a corner: wrap). */
+static int piece_kept(const double *X, const double *R, size_t m, size_t j, int wrap) {
+  double x = j + 1 < m ? X[j + 1] - X[j] : 1.0 - X[j], r = j + 1 < m ? R[j + 1] - R[j] : 1.0 - R[j];
+  if (j + 1 == m && !wrap) return 1; /* past the last corner nothing is mapped */
+  return r * MERGE_STRETCH >= x && r <= x * MERGE_STRETCH;
+}
+
+/* Corners whose move would stretch or squeeze a piece next to them by more than
+** MERGE_STRETCH stay where they are, until every piece is kept. */
+static void keep_pieces(const double *X, double *R, size_t m, int wrap) {
+  size_t j, pass;
+  int changed = 1;
+  for (pass = 0; pass <= m && changed; pass++) {
+    changed = 0;
+    for (j = 0; j < m; j++)
+      if (!piece_kept(X, R, m, j, wrap)) {
+        size_t next = j + 1 < m ? j + 1 : 0;
+        changed |= R[j] != X[j] || (wrap || j + 1 < m ? R[next] != X[next] : 0);
+        R[j] = X[j];
+        if (j + 1 < m) R[j + 1] = X[j + 1];
+      }
+  }
+}
+
 /* Moves c's unanchored corners to their cluster's value (xs[0..n-1] the sorted corners of
-** all the sections, rep their values). A map that would collapse a piece leaves c alone.
-** X, R, t: scratch of N + 2 values; own: of N + 1 corners. */
+** all the sections, rep their values), except those that would distort a piece next to
+** them (keep_pieces: a piece of the trailing edge of a meshed wing, 8.5e-4 of the period,
+** was squeezed into 3.5e-7 by corners of other sections 1e-3 away; the surface passed
+** through the section, the piece all but hidden in one u-sliver). A map that would
+** collapse a piece leaves c alone. X, R, t: scratch of N + 2 values; own: of N + 1
+** corners. */
 static bsfit_err remap_section(bsfit_curve *c, const double *xs, const double *rep, size_t n,
                                double tol, corner *own, double *X, double *R, double *t,
                                const bsfit_allocator *a, bsfit_status *st) {
@@ -198,6 +229,9 @@ static bsfit_err remap_section(bsfit_curve *c, const double *xs, const double *r
   for (j = 0; j < m; j++) {
     X[j] = own[j].x;
     R[j] = own[j].anchored ? X[j] : rep[find_value(xs, n, X[j])];
+  }
+  keep_pieces(X, R, m, m > 0 && X[0] == 0.0);
+  for (j = 0; j < m; j++) {
     moved |= R[j] != X[j];
     if (j > 0 && !(R[j] > R[j - 1])) return BSFIT_OK;
   }

@@ -3,9 +3,9 @@
 ** Sliver pieces dropped from a section before it is approximated within a tolerance. `auto`
 ** on an exact mesh loop ends many lines at a corner through a piece 1e-12 of the period
 ** long and under 1e-9 long in space (two C0 knots that close: 260 of the 690 corners of a
-** 1000-facet loop). Closest-point searches bracket by a span's own step, so next to such a
-** piece they stopped at the corner with the true foot one span away (distances 100 times
-** too large). Those pieces carry no shape: each is removed, and the curve after it starts
+** 1000-facet loop). Closest-point searches once bracketed by a span's own step and
+** stopped at the corner next to such a piece (they are global now: closest_pieces.c).
+** Those pieces carry no shape: each is removed, and the curve after it starts
 ** where it started, which moves the section by no more than the piece's control points
 ** spread (reported, and added to the distance the cubic is measured at).
 ** On a piece between two knots of multiplicity p the curve depends on that piece's knots

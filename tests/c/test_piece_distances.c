@@ -82,9 +82,9 @@ static void test_distances_are_the_polygon_distances(void **state) {
       }
     }
     /* the points of side i said to be piece (i + shift) % nv's: shift 0 is the truth. Given
-    ** to other pieces, or farther off than 1e-3, a point near a thin spike can be missed by
-    ** the global search too (its coarse samples on the long side lie farther than the
-    ** spike's other side), so there the distance is held to the global search's */
+    ** to other pieces, or farther off than 1e-3, the distance is held to the global
+    ** search's, which is the polygon's distance itself (it once missed a thin spike's other
+    ** side: a point 2.4e-8 off read as 0.12) */
     for (i = 0; i < nv; i++) {
       first[i] = (size_t)(30 * ((i + trial % 3) % nv)), count[i] = 30;
     }
@@ -97,6 +97,7 @@ static void test_distances_are_the_polygon_distances(void **state) {
       for (j = 0; j < nv; j++)
         truth = fmin(truth, seg_dist(xy + 2 * k, V + 2 * j, V + 2 * ((j + 1) % nv)));
       assert_int_equal(bsfit_curve_closest(&c, xy + 2 * k, &u1, &g, NULL, NULL), BSFIT_OK);
+      assert_true(fabs(g - truth) <= 1e-9 * truth + 1e-12);
       assert_true(isfinite(d[k]) && d[k] >= truth - 1e-12 && d[k] <= g + 1e-14);
       if (trial % 3 == 0) { /* their own pieces, within 1e-3: the true distance */
         worst = fmax(worst, fabs(d[k] - truth));

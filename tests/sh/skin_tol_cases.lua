@@ -62,6 +62,11 @@ local runs = {
   { "ellipse-c5e-3", "ellipse", nil, { 60000, 0.005 }, 6, { 1, 2 } },
   { "prism-c3e-3", "prism", nil, { 60000, 0.003 }, 6, { 1 } },
   { "wing-c5e-3", "wing", nil, { 60000, 0.005 }, 6, { 1 } },
+  -- meshed wings, light and exact (factor 0): loops with corners 1e-4 of the period apart
+  -- at the trailing edge, whose merging once squeezed a piece 2400 times in u
+  { "wing-m200x40", "wing", { 200, 40 }, nil, 6, { 1, 0 } },
+  { "wing-m120x30", "wing", { 120, 30 }, nil, 5, { 1, 0 } },
+  { "wing-m300x50", "wing", { 300, 50 }, nil, 9, { 0 } },
 }
 
 local list = assert(io.open(out .. "/cases.txt", "w"))
