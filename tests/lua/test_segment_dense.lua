@@ -276,3 +276,27 @@ T.test("bs.geom.piece_distances on arcs: the exact distances of points off the o
     end
   end
 end)
+
+-- Samples all on one circle but not in order along it (the k-th at angle k times a step,
+-- winding round many times: cos i, sin i for i = 1 .. 9119 winds 1451 times) fit the circle
+-- to rounding. They were one arc of 1.1 radians plus a bridge, 1.7 (the diameter) from the
+-- samples, reported as success without a word. An arc turns round at most once: no piece
+-- of theirs is an arc, and auto either follows the samples or says that its curve crosses.
+T.test("samples on a circle but not in order along it: no arc, no silent miss", function()
+  for _, c in ipairs { { 9119, 1.0, 1 }, { 500, 2.5, 3 }, { 2000, 2.399963229728653, 0.01 },
+                       { 64, math.pi * 0.75, 1e3 } } do
+    local m, step, r = c[1], c[2], c[3]
+    local pts = {}
+    for k = 1, m do pts[k] = { 5 * r + r * math.cos(k * step), -2 * r + r * math.sin(k * step) } end
+    local P = bs.points.new(pts)
+    local what = ("%d samples, %g rad apart, radius %g"):format(m, step, r)
+    for _, p in ipairs(bs.geom.segment(P, { closed = true })) do
+      T.ok(p.kind ~= "arc" or p.count * step < 2 * math.pi + step,
+           ("%s: an arc of %d samples winds round"):format(what, p.count))
+    end
+    local C, rep = auto.run(P)
+    T.ok(C ~= nil, what .. ": a curve")
+    T.ok(rep.max <= 1e-9 * 2 * r or #(rep.warnings or {}) > 0,
+         ("%s: max %g without a warning"):format(what, rep.max))
+  end
+end)
