@@ -9,48 +9,8 @@ local T = require "tap"
 local bs = require "bsfit"
 local synth = require "synth"
 
--- the distance from (x, y) to C over its distinct knots kn: 400 evaluations per span, then
--- around every local minimum of those (not only the nearest: a narrow valley's bottom can
--- lie nearer than the nearest sample) 20 evaluations, twelve times, each round a tenth as
--- wide
-local function zoom(C, x, y, a, b, lo, hi)
-  local best, n = math.huge, 20
-  for _ = 1, 12 do
-    local bt, bd = lo, math.huge
-    for j = 0, n do
-      local t = lo + (hi - lo) * j / n
-      local px, py = C:eval(t)
-      local dd = (px - x) ^ 2 + (py - y) ^ 2
-      if dd < bd then bd, bt = dd, t end
-    end
-    best = math.min(best, bd)
-    local h = (hi - lo) / n
-    lo, hi = math.max(a, bt - h), math.min(b, bt + h)
-  end
-  return best
-end
-
-local function dense(C, x, y, kn)
-  local best, n = math.huge, 400
-  for s = 1, #kn - 1 do
-    local a, b = kn[s], kn[s + 1]
-    if b > a then
-      local d = {}
-      for j = 0, n do
-        local px, py = C:eval(a + (b - a) * j / n)
-        d[j] = (px - x) ^ 2 + (py - y) ^ 2
-      end
-      for j = 0, n do
-        if (j == 0 or d[j] <= d[j - 1]) and (j == n or d[j] <= d[j + 1]) then
-          local h = (b - a) / n
-          best = math.min(best, d[j], zoom(C, x, y, a, b, math.max(a, a + (j - 1) * h),
-                                           math.min(b, a + (j + 1) * h)))
-        end
-      end
-    end
-  end
-  return math.sqrt(best)
-end
+-- the independent dense measure (tests/lua/dense_distance.lua)
+local dense = require("dense_distance").distance
 
 -- a random open curve of degree p with one corner (p equal knots) and sometimes a double
 -- knot elsewhere, polynomial or rational; returns it, the corner and the distinct knots

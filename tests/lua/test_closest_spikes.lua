@@ -12,53 +12,8 @@ local T = require "tap"
 local bs = require "bsfit"
 local synth = require "synth"
 
-local function dist2(C, t, x, y)
-  local px, py = C:eval(t)
-  return (px - x) ^ 2 + (py - y) ^ 2
-end
-
-local function zoom(C, x, y, a, b, lo, hi)
-  local best, n = math.huge, 20
-  for _ = 1, 14 do
-    local bt, bd = lo, math.huge
-    for j = 0, n do
-      local t = lo + (hi - lo) * j / n
-      local dd = dist2(C, t, x, y)
-      if dd < bd then bd, bt = dd, t end
-    end
-    best = math.min(best, bd)
-    local h = (hi - lo) / n
-    lo, hi = math.max(a, bt - h), math.min(b, bt + h)
-  end
-  return best
-end
-
--- the dense measure over the distinct knots kn
-local function dense(C, x, y, kn)
-  local best, n = math.huge, 400
-  for s = 1, #kn - 1 do
-    local a, b = kn[s], kn[s + 1]
-    if b > a then
-      local d, h = {}, (b - a) / n
-      for j = 0, n do d[j] = dist2(C, a + h * j, x, y) end
-      for j = 0, n do
-        if (j == 0 or d[j] <= d[j - 1]) and (j == n or d[j] <= d[j + 1]) then
-          best = math.min(best, d[j], zoom(C, x, y, a, b, math.max(a, a + (j - 1) * h),
-                                           math.min(b, a + (j + 1) * h)))
-        end
-      end
-    end
-  end
-  return math.sqrt(best)
-end
-
-local function distinct(K)
-  local kn = {}
-  for _, v in ipairs(K) do
-    if kn[#kn] ~= v then kn[#kn + 1] = v end
-  end
-  return kn
-end
+local measure = require "dense_distance"
+local dist2, dense, distinct = measure.dist2, measure.distance, measure.distinct
 
 local function weights(uniform, n, rational)
   if not rational then return nil end
