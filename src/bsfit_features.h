@@ -98,12 +98,14 @@ BSFIT_API bsfit_err bsfit_segment(const double *pts, size_t m, int dim,
 ** Segmented at a level below its noise, a section's runs stop short, and the pooled
 ** residual of its lines and arcs (sum of squares over degrees of freedom) exceeds the
 ** level; at the noise the models are right and the two match. The levels tried rise by
-** 10^(1/12) (the last at max_sigma) from a sixteenth of a first guess (how far samples lie off their neighbours'
-** chord: the lower quartile, over its value for pure noise, 0.3186 sigma); the first
-** whose pooled residual is at most 1.2 times the level gives the estimate. Sparse
-** samples of a contour that bends between them make window-based estimates
-** (bsfit_noise_sigma) many times too large; this one is not, where lines and arcs hold
-** the samples. Cost: up to ~30 segmentations (typically 10-20).
+** 10^(1/4) (10^(1/12) where the next could match; the last at max_sigma) from a
+** sixteenth of a first guess (how far samples lie off their neighbours' chord: the lower
+** quartile, over its value for pure noise, 0.3186 sigma); the first whose pooled residual
+** is at most 1.2 times the level gives the estimate. When none does and some level's
+** models left a robust residual below the start (the first guess was above the noise),
+** the levels below the start, down to a sixteenth of it: the first that matches. Sparse samples of a contour that bends between them make window-based
+** estimates (bsfit_noise_sigma) many times too large; this one is not, where lines and
+** arcs hold the samples. Cost: up to ~35 segmentations (typically 10-20).
 ** @param[in]  max_sigma the highest level tried (<= 0: 5% of the size): a caller that
 **                   will not believe a larger one saves the costly high levels, where
 **                   runs grow long.
