@@ -45,7 +45,10 @@ local function noise_of_pieces(P, sigma, closed)
   if not (sigma > 0) then return nil, "no noise" end
   local s = common.ok("noise of the pieces",
                       bs.geom.segment_sigma(P, { closed = closed, max = AGREE * sigma }))
-  if not (s > 0 and s < AGREE * sigma) then
+  if s == 0 then -- no level up to the cap where the lines' and arcs' residual matched it
+    return nil, ("no noise level of lines and arcs up to %.3g (windows %.3g)"):format(AGREE * sigma, sigma)
+  end
+  if not (s < AGREE * sigma) then
     return nil, ("noise of the pieces %.3g, of windows %.3g"):format(s, sigma)
   end
   return s
