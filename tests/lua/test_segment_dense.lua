@@ -298,5 +298,10 @@ T.test("samples on a circle but not in order along it: no arc, no silent miss", 
     T.ok(C ~= nil, what .. ": a curve")
     T.ok(rep.max <= 1e-9 * 2 * r or #(rep.warnings or {}) > 0,
          ("%s: max %g without a warning"):format(what, rep.max))
+    -- and the warning says what is wrong with the samples
+    if rep.crossings > 0 then
+      T.ok(table.concat(rep.warnings, " "):find("in order along the outline", 1, true) ~= nil,
+           what .. ": " .. table.concat(rep.warnings, "; "))
+    end
   end
 end)
