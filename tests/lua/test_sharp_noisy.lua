@@ -44,13 +44,11 @@ local function spacing(pts)
   return h
 end
 
--- One section: its checks that must hold, and what it measures. Returns
--- {pieces, within (Hausdorff), ratio, corners_ok, corners, radii_ok, radii}.
-local function run_case(name, per, rel, uneven, seed)
-  local o = ALL[name]
-  local size = shapes.size(o)
-  local sigma = rel * size
-  local pts = shapes.sample(o, per, { sigma = sigma, seed = seed, uneven = uneven })
+-- One section (a case of shapes.sweep_cases): its checks that must hold, and what it
+-- measures. Returns {pieces, within (Hausdorff), ratio, corners_ok, corners, radii_ok, radii}.
+local function run_case(c)
+  local name, per, rel, uneven, seed = c.name, c.per, c.rel, c.uneven, c.seed
+  local o, size, sigma, pts = c.o, c.size, c.sigma, c.pts
   local what = ("%s %d per side noise %g %s seed %d"):format(name, per, rel,
                                                              uneven and "uneven" or "even", seed)
   local ok, C, rep = pcall(auto.run, bs.points.new(pts))
@@ -95,25 +93,19 @@ local FLOOR = { within = 207, pieces = 258, pieces_within = 197, corners = 0.99,
 
 T.test("sparse and noisy sections: no error, closed, no loop; the issue's numbers measured on all", function()
   local rows, tot = {}, { n = 0, pieces = 0, within = 0, pw = 0, c = 0, cok = 0, r = 0, rok = 0 }
-  for k, name in ipairs(NAMES) do
-    for _, per in ipairs { 3, 4, 5, 6, 10 } do
-      for j, rel in ipairs { 1e-4, 1e-3, 3e-3 } do
-        for _, uneven in ipairs { false, true } do
-          local r = run_case(name, per, rel, uneven, 1000 * k + 10 * per + j)
-          local key = ("%2d per side, noise %g"):format(per, rel)
-          local row = rows[key] or { n = 0, pieces = 0, within = 0, worst = 0 }
-          rows[key] = row
-          if r then
-            row.n, tot.n = row.n + 1, tot.n + 1
-            if r.pieces then row.pieces, tot.pieces = row.pieces + 1, tot.pieces + 1 end
-            if r.within then row.within, tot.within = row.within + 1, tot.within + 1 end
-            if r.within and r.pieces then tot.pw = tot.pw + 1 end
-            row.worst = math.max(row.worst, r.ratio)
-            tot.c, tot.cok = tot.c + r.corners, tot.cok + r.corners_ok
-            tot.r, tot.rok = tot.r + r.radii, tot.rok + r.radii_ok
-          end
-        end
-      end
+  for c in shapes.sweep_cases() do
+    local r = run_case(c)
+    local key = ("%2d per side, noise %g"):format(c.per, c.rel)
+    local row = rows[key] or { n = 0, pieces = 0, within = 0, worst = 0 }
+    rows[key] = row
+    if r then
+      row.n, tot.n = row.n + 1, tot.n + 1
+      if r.pieces then row.pieces, tot.pieces = row.pieces + 1, tot.pieces + 1 end
+      if r.within then row.within, tot.within = row.within + 1, tot.within + 1 end
+      if r.within and r.pieces then tot.pw = tot.pw + 1 end
+      row.worst = math.max(row.worst, r.ratio)
+      tot.c, tot.cok = tot.c + r.corners, tot.cok + r.corners_ok
+      tot.r, tot.rok = tot.r + r.radii, tot.rok + r.radii_ok
     end
   end
   local keys = {}
