@@ -80,7 +80,8 @@ for c in shapes.sweep_cases() do
     local reach = sides_own_fits(c.o, pts, per) <= floor
     if not reach then out_of_reach = out_of_reach + 1 end
     if not ok then
-      print(("%-8s %2d %-6g %-6s error: %s"):format(name, per, rel, uneven and "uneven" or "even", C))
+      print(("%-8s %2d %-6g %-6s error: %s"):format(name, per, rel, uneven and "uneven" or "even",
+                                                    C))
     else
       local ratio = shapes.hausdorff(bs, C, c.o, 2000, 60) / floor
       if ratio <= 1 then within = within + 1 end

@@ -161,29 +161,23 @@ end)
 T.test("noise 1e-2 of the size: no loop, no error, no corner farther than a sample from a true one "
        .. "(or from a fillet narrower than a step)", function()
   local far, corners = 0, 0
-  for k, name in ipairs(NAMES) do
-    local o = ALL[name]
-    local size = shapes.size(o)
-    for _, per in ipairs { 4, 6, 10 } do
-      for _, uneven in ipairs { false, true } do
-        local pts = shapes.sample(o, per, { sigma = 1e-2 * size, seed = 77 * k + per, uneven = uneven })
-        local what = ("%s %d per side%s"):format(name, per, uneven and " uneven" or "")
-        local ok, C, rep = pcall(auto.run, bs.points.new(pts))
-        T.ok(ok, what .. ": " .. tostring(ok or C))
-        if ok then
-          T.eq((bs.geom.self_intersections(C, 2000)), 0, what .. ": self-intersection")
-          local hs = spacing(pts)
-          local places = corner_places(o, hs, 1e-2 * size)
-          for _, p in ipairs(rep.pieces or {}) do
-            if p.join == "corner" then
-              local best = math.huge
-              for _, v in ipairs(places) do best = math.min(best, dist(v, p.start)) end
-              corners = corners + 1
-              if best > hs then far = far + 1 end
-              T.ok(best <= hs, ("%s: corner (%g, %g) %g from a true one, spacing %g")
-                :format(what, p.start[1], p.start[2], best, hs))
-            end
-          end
+  local function seed(k, per) return 77 * k + per end
+  for c in shapes.sweep_cases { pers = { 4, 6, 10 }, rels = { 1e-2 }, seed = seed } do
+    local what = ("%s %d per side%s"):format(c.name, c.per, c.uneven and " uneven" or "")
+    local ok, C, rep = pcall(auto.run, bs.points.new(c.pts))
+    T.ok(ok, what .. ": " .. tostring(ok or C))
+    if ok then
+      T.eq((bs.geom.self_intersections(C, 2000)), 0, what .. ": self-intersection")
+      local hs = spacing(c.pts)
+      local places = corner_places(c.o, hs, c.sigma)
+      for _, p in ipairs(rep.pieces or {}) do
+        if p.join == "corner" then
+          local best = math.huge
+          for _, v in ipairs(places) do best = math.min(best, dist(v, p.start)) end
+          corners = corners + 1
+          if best > hs then far = far + 1 end
+          T.ok(best <= hs, ("%s: corner (%g, %g) %g from a true one, spacing %g")
+            :format(what, p.start[1], p.start[2], best, hs))
         end
       end
     end
