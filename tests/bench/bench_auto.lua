@@ -37,9 +37,7 @@ end
 
 -- sections of lines and arcs, through the pieces
 local function polygon(v, per, sigma, seed)
-  local t, s = {}, seed or 1
-  local function rnd() s = (s * 1103515245 + 12345) % 2147483648; return (s + 0.5) / 2147483648 end
-  local function gauss() return math.sqrt(-2 * math.log(rnd())) * math.cos(2 * math.pi * rnd()) end
+  local t, _, gauss = {}, bench.rng(seed)
   for i = 1, #v do
     local a, b = v[i], v[i % #v + 1]
     for j = 1, per do
@@ -49,19 +47,8 @@ local function polygon(v, per, sigma, seed)
   end
   return bs.points.new(t)
 end
-local function dshape(m)
-  local t, nl = {}, math.floor(m * 2 / (2 + math.pi))
-  for i = 0, nl - 1 do t[#t + 1] = { -10 + 20 * (i + 0.5) / nl, 0 } end
-  for i = 0, m - nl - 1 do
-    local a = math.pi * (i + 0.5) / (m - nl)
-    t[#t + 1] = { 10 * math.cos(a), 10 * math.sin(a) }
-  end
-  return bs.points.new(t)
-end
 local function rrect(per, sigma)
-  local t, s, r = {}, 5, 1.5
-  local function rnd() s = (s * 1103515245 + 12345) % 2147483648; return (s + 0.5) / 2147483648 end
-  local function gauss() return math.sqrt(-2 * math.log(rnd())) * math.cos(2 * math.pi * rnd()) end
+  local t, r, _, gauss = {}, 1.5, bench.rng(5)
   local corners = { { 60 - r, r }, { 60 - r, 30 - r }, { r, 30 - r }, { r, r } }
   local sides = { { { r, 0 }, { 60 - r, 0 } }, { { 60, r }, { 60, 30 - r } }, { { 60 - r, 30 }, { r, 30 } },
                   { { 0, 30 - r }, { 0, r } } }
@@ -95,7 +82,7 @@ local circle = (function()
 end)()
 for _, c in ipairs {
   { "T, 40 exact points", polygon(T, 5, 0) },
-  { "D, 20 exact points", dshape(20) },
+  { "D, 20 exact points", bench.dshape(20) },
   { "rounded rectangle, 64 points, noise 1e-4", rrect(8, 6.7e-3) },
   { "gear, 3000 exact points", polygon(gear, 75, 0) },
   -- long runs: the segmentation was quadratic in a run's length (6.5 s at 64000)

@@ -9,10 +9,11 @@
 -- Times are wall clock (bs.parallel.clock); best of 3 for the timed kernels.
 local bs = require "bsfit"
 local here = (arg and arg[0] or ""):match("^(.*)/tests/bench/[^/]*$") or "."
-package.path = here .. "/tests/lua/?.lua;" .. here .. "/lua/?.lua;" .. package.path
+package.path = here .. "/tests/lua/?.lua;" .. here .. "/lua/?.lua;" .. here .. "/tests/bench/?.lua;"
+               .. package.path
 local synth = require "scan_synth"
+local bench = require "benchlib"
 local pipeline = require "bsfit.scan.pipeline"
-local clock = bs.parallel.clock
 local jobs = tonumber(arg and arg[1]) or 2
 
 local function tmpdir()
@@ -23,15 +24,7 @@ local function tmpdir()
 end
 local DIR = tmpdir()
 
-local function best(n, f)
-  local b = math.huge
-  for _ = 1, n do
-    local t0 = clock()
-    f()
-    b = math.min(b, clock() - t0)
-  end
-  return b
-end
+local function best(n, f) return bench.least(f, n) end
 
 -- a binary PLY of a cloud of n points on the vase, written with string.pack by chunks
 local function write_cloud(path, n)

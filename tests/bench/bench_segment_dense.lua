@@ -10,8 +10,6 @@ local bs = require "bsfit"
 local auto = require "bsfit.strategy.auto"
 local bench = require "benchlib"
 
-local clock = bench.clock
-
 -- m samples of the closed curve f(a), a in [0, 2 pi), at the middles of m equal steps
 local function closed(m, f)
   local t = {}
@@ -26,31 +24,12 @@ local function bump(a)
   return { r * math.cos(a), r * math.sin(a) }
 end
 
--- a D of radius 10: its straight side and its half circle sampled at the same spacing
-local function dshape(m)
-  local t, nl = {}, math.floor(m * 2 / (2 + math.pi))
-  for i = 0, nl - 1 do t[#t + 1] = { -10 + 20 * (i + 0.5) / nl, 0 } end
-  for i = 0, m - nl - 1 do
-    local a = math.pi * (i + 0.5) / (m - nl)
-    t[#t + 1] = { 10 * math.cos(a), 10 * math.sin(a) }
-  end
-  return bs.points.new(t)
-end
-
 -- the least time of `runs` calls of f, in ms
-local function least(f, runs)
-  local best = math.huge
-  for _ = 1, runs do
-    local t0 = clock()
-    f()
-    best = math.min(best, clock() - t0)
-  end
-  return best * 1000
-end
+local function least(f, runs) return bench.least(f, runs) * 1000 end
 
 for _, m in ipairs { 10000, 100000 } do
   for _, c in ipairs {
-    { "circle far from the origin", closed(m, circle) }, { "D shape", dshape(m) },
+    { "circle far from the origin", closed(m, circle) }, { "D shape", bench.dshape(m) },
     { "ellipse", closed(m, ellipse) }, { "five-lobed bump", closed(m, bump) },
   } do
     local P = c[2]

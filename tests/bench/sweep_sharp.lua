@@ -60,45 +60,39 @@ end
 local segment_sigma, true_sigma = bs.geom.segment_sigma, nil
 if opts.true_sigma then bs.geom.segment_sigma = function() return true_sigma end end
 
-local ALL, NAMES = shapes.all(), shapes.names()
+-- whether the command line's density and noise take a section of the sweep
+local function wanted(per, rel)
+  for _, p in ipairs(PERS) do
+    for _, r in ipairs(RELS) do if p == per and r == rel then return true end end
+  end
+  return false
+end
+
 local n, within, pieces, pieces_within, out_of_reach = 0, 0, 0, 0, 0
 local t0 = os.clock()
-for k, name in ipairs(NAMES) do
-  for _, per in ipairs { 3, 4, 5, 6, 10 } do
-    for j, rel in ipairs { 1e-4, 1e-3, 3e-3 } do
-      for _, uneven in ipairs { false, true } do
-        local wanted = false
-        for _, p in ipairs(PERS) do
-          for _, r in ipairs(RELS) do wanted = wanted or (p == per and r == rel) end
-        end
-        if wanted then
-          local o = ALL[name]
-          local size = shapes.size(o)
-          local sigma = rel * size
-          local floor = 3 * sigma + 1e-3 * size
-          local pts = shapes.sample(o, per, { sigma = sigma, seed = 1000 * k + 10 * per + j,
-                                              uneven = uneven })
-          true_sigma = sigma
-          local ok, C, rep = pcall(auto.run, bs.points.new(pts))
-          n = n + 1
-          local reach = sides_own_fits(o, pts, per) <= floor
-          if not reach then out_of_reach = out_of_reach + 1 end
-          if not ok then
-            print(("%-8s %2d %-6g %-6s error: %s"):format(name, per, rel, uneven and "uneven" or "even", C))
-          else
-            local ratio = shapes.hausdorff(bs, C, o, 2000, 60) / floor
-            if ratio <= 1 then within = within + 1 end
-            if rep.pieces then pieces = pieces + 1 end
-            if rep.pieces and ratio <= 1 then pieces_within = pieces_within + 1 end
-            if ratio > 1 or opts.all then
-              print(("%-8s %2d %-6g %-6s m %3d  ratio %7.2f  %s%s%s"):format(name, per, rel,
-                uneven and "uneven" or "even", #pts, ratio,
-                rep.pieces and ("pieces " .. #rep.pieces) or "smooth",
-                rep.pieces_rejected and (": " .. rep.pieces_rejected) or "",
-                reach and "" or "  (sides' own fits beyond the floor)"))
-            end
-          end
-        end
+for c in shapes.sweep_cases() do
+  if wanted(c.per, c.rel) then
+    local name, per, rel, uneven, pts = c.name, c.per, c.rel, c.uneven, c.pts
+    local floor = 3 * c.sigma + 1e-3 * c.size
+    true_sigma = c.sigma
+    local ok, C, rep = pcall(auto.run, bs.points.new(pts))
+    n = n + 1
+    local reach = sides_own_fits(c.o, pts, per) <= floor
+    if not reach then out_of_reach = out_of_reach + 1 end
+    if not ok then
+      print(("%-8s %2d %-6g %-6s error: %s"):format(name, per, rel, uneven and "uneven" or "even",
+                                                    C))
+    else
+      local ratio = shapes.hausdorff(bs, C, c.o, 2000, 60) / floor
+      if ratio <= 1 then within = within + 1 end
+      if rep.pieces then pieces = pieces + 1 end
+      if rep.pieces and ratio <= 1 then pieces_within = pieces_within + 1 end
+      if ratio > 1 or opts.all then
+        print(("%-8s %2d %-6g %-6s m %3d  ratio %7.2f  %s%s%s"):format(name, per, rel,
+          uneven and "uneven" or "even", #pts, ratio,
+          rep.pieces and ("pieces " .. #rep.pieces) or "smooth",
+          rep.pieces_rejected and (": " .. rep.pieces_rejected) or "",
+          reach and "" or "  (sides' own fits beyond the floor)"))
       end
     end
   end

@@ -280,15 +280,14 @@ T.test("open or closed from the data: every generated case decided right, both o
   -- open: the first 60% of each outline sampled at 10 per side (fewer samples leave the
   -- gap of a part of an outline as short as a step of the whole: ambiguous, reported)
   local closed_cases, open_cases = {}, {}
-  for _, name in ipairs(NAMES) do
-    for _, per in ipairs { 4, 6, 10 } do
-      for _, uneven in ipairs { false, true } do
-        local pts = shapes.sample(ALL[name], per, { uneven = uneven, seed = per, sigma = 1e-3 * shapes.size(ALL[name]) })
-        if per < 10 then closed_cases[#closed_cases + 1] = { name = name .. " " .. per, pts = pts } end
-        local part = {}
-        for i = 1, math.floor(0.6 * #pts) do part[i] = pts[i] end
-        if per == 10 then open_cases[#open_cases + 1] = { name = name .. " " .. per .. " part", pts = part } end
-      end
+  local function seed(_, per) return per end
+  for c in shapes.sweep_cases { pers = { 4, 6, 10 }, rels = { 1e-3 }, seed = seed } do
+    local name, per, pts = c.name, c.per, c.pts
+    if per < 10 then closed_cases[#closed_cases + 1] = { name = name .. " " .. per, pts = pts } end
+    local part = {}
+    for i = 1, math.floor(0.6 * #pts) do part[i] = pts[i] end
+    if per == 10 then
+      open_cases[#open_cases + 1] = { name = name .. " " .. per .. " part", pts = part }
     end
   end
   for name, f in pairs(synth.smooth) do

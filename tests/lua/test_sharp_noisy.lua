@@ -44,13 +44,11 @@ local function spacing(pts)
   return h
 end
 
--- One section: its checks that must hold, and what it measures. Returns
--- {pieces, within (Hausdorff), ratio, corners_ok, corners, radii_ok, radii}.
-local function run_case(name, per, rel, uneven, seed)
-  local o = ALL[name]
-  local size = shapes.size(o)
-  local sigma = rel * size
-  local pts = shapes.sample(o, per, { sigma = sigma, seed = seed, uneven = uneven })
+-- One section (a case of shapes.sweep_cases): its checks that must hold, and what it
+-- measures. Returns {pieces, within (Hausdorff), ratio, corners_ok, corners, radii_ok, radii}.
+local function run_case(c)
+  local name, per, rel, uneven, seed = c.name, c.per, c.rel, c.uneven, c.seed
+  local o, size, sigma, pts = c.o, c.size, c.sigma, c.pts
   local what = ("%s %d per side noise %g %s seed %d"):format(name, per, rel,
                                                              uneven and "uneven" or "even", seed)
   local ok, C, rep = pcall(auto.run, bs.points.new(pts))
@@ -96,25 +94,19 @@ local FLOOR = { within = 212, pieces = 264, pieces_within = 202, corners = 0.99,
 
 T.test("sparse and noisy sections: no error, closed, no loop; the issue's numbers measured on all", function()
   local rows, tot = {}, { n = 0, pieces = 0, within = 0, pw = 0, c = 0, cok = 0, r = 0, rok = 0 }
-  for k, name in ipairs(NAMES) do
-    for _, per in ipairs { 3, 4, 5, 6, 10 } do
-      for j, rel in ipairs { 1e-4, 1e-3, 3e-3 } do
-        for _, uneven in ipairs { false, true } do
-          local r = run_case(name, per, rel, uneven, 1000 * k + 10 * per + j)
-          local key = ("%2d per side, noise %g"):format(per, rel)
-          local row = rows[key] or { n = 0, pieces = 0, within = 0, worst = 0 }
-          rows[key] = row
-          if r then
-            row.n, tot.n = row.n + 1, tot.n + 1
-            if r.pieces then row.pieces, tot.pieces = row.pieces + 1, tot.pieces + 1 end
-            if r.within then row.within, tot.within = row.within + 1, tot.within + 1 end
-            if r.within and r.pieces then tot.pw = tot.pw + 1 end
-            row.worst = math.max(row.worst, r.ratio)
-            tot.c, tot.cok = tot.c + r.corners, tot.cok + r.corners_ok
-            tot.r, tot.rok = tot.r + r.radii, tot.rok + r.radii_ok
-          end
-        end
-      end
+  for c in shapes.sweep_cases() do
+    local r = run_case(c)
+    local key = ("%2d per side, noise %g"):format(c.per, c.rel)
+    local row = rows[key] or { n = 0, pieces = 0, within = 0, worst = 0 }
+    rows[key] = row
+    if r then
+      row.n, tot.n = row.n + 1, tot.n + 1
+      if r.pieces then row.pieces, tot.pieces = row.pieces + 1, tot.pieces + 1 end
+      if r.within then row.within, tot.within = row.within + 1, tot.within + 1 end
+      if r.within and r.pieces then tot.pw = tot.pw + 1 end
+      row.worst = math.max(row.worst, r.ratio)
+      tot.c, tot.cok = tot.c + r.corners, tot.cok + r.corners_ok
+      tot.r, tot.rok = tot.r + r.radii, tot.rok + r.radii_ok
     end
   end
   local keys = {}
@@ -207,29 +199,23 @@ end)
 T.test("noise 1e-2 of the size: no loop, no error, no corner farther than a sample from a true one "
        .. "(or from a fillet narrower than a step)", function()
   local far, corners = 0, 0
-  for k, name in ipairs(NAMES) do
-    local o = ALL[name]
-    local size = shapes.size(o)
-    for _, per in ipairs { 4, 6, 10 } do
-      for _, uneven in ipairs { false, true } do
-        local pts = shapes.sample(o, per, { sigma = 1e-2 * size, seed = 77 * k + per, uneven = uneven })
-        local what = ("%s %d per side%s"):format(name, per, uneven and " uneven" or "")
-        local ok, C, rep = pcall(auto.run, bs.points.new(pts))
-        T.ok(ok, what .. ": " .. tostring(ok or C))
-        if ok then
-          T.eq((bs.geom.self_intersections(C, 2000)), 0, what .. ": self-intersection")
-          local hs = spacing(pts)
-          local places = corner_places(o, hs, 1e-2 * size)
-          for _, p in ipairs(rep.pieces or {}) do
-            if p.join == "corner" then
-              local best = math.huge
-              for _, v in ipairs(places) do best = math.min(best, dist(v, p.start)) end
-              corners = corners + 1
-              if best > hs then far = far + 1 end
-              T.ok(best <= hs, ("%s: corner (%g, %g) %g from a true one, spacing %g")
-                :format(what, p.start[1], p.start[2], best, hs))
-            end
-          end
+  local function seed(k, per) return 77 * k + per end
+  for c in shapes.sweep_cases { pers = { 4, 6, 10 }, rels = { 1e-2 }, seed = seed } do
+    local what = ("%s %d per side%s"):format(c.name, c.per, c.uneven and " uneven" or "")
+    local ok, C, rep = pcall(auto.run, bs.points.new(c.pts))
+    T.ok(ok, what .. ": " .. tostring(ok or C))
+    if ok then
+      T.eq((bs.geom.self_intersections(C, 2000)), 0, what .. ": self-intersection")
+      local hs = spacing(c.pts)
+      local places = corner_places(c.o, hs, c.sigma)
+      for _, p in ipairs(rep.pieces or {}) do
+        if p.join == "corner" then
+          local best = math.huge
+          for _, v in ipairs(places) do best = math.min(best, dist(v, p.start)) end
+          corners = corners + 1
+          if best > hs then far = far + 1 end
+          T.ok(best <= hs, ("%s: corner (%g, %g) %g from a true one, spacing %g")
+            :format(what, p.start[1], p.start[2], best, hs))
         end
       end
     end
