@@ -503,13 +503,17 @@ static int touching(const seg_section *s, const seg_model *ma, const seg_model *
 
 /* Is x where A (last sample qa) may meet B (first sample qb)? Beyond qa along A, before
 ** qb along B (by `slack` at most), and within reach of both (as far as the pieces' own
-** spacing). */
+** spacing; a line as far as the slack besides: it runs within the tolerance of the arc
+** it touches for sqrt(2 r tol) past the touching point, however densely the arc is
+** sampled. Two arcs are not given that reach: a smooth curve's arcs overlap that far, and
+** were then read as tangent arcs, a cam of 200 samples 4 times farther from the truth). */
 static int in_gap(const seg_section *s, const bsfit_piece *A, const seg_model *ma,
                   const bsfit_piece *B, const seg_model *mb, const double *x, double slack) {
   const double *qa = sample(s, A->first + A->count - 1), *qb = sample(s, B->first);
   double ta[2], tb[2], f[2], chord = hypot(qb[0] - qa[0], qb[1] - qa[1]);
-  double reach_a = 1.5 * max_spacing(s, A) + 1.5 * chord + s->tol;
-  double reach_b = 1.5 * max_spacing(s, B) + 1.5 * chord + s->tol;
+  double past = ma->kind == LINE || mb->kind == LINE ? slack : 0.0;
+  double reach_a = 1.5 * max_spacing(s, A) + 1.5 * chord + s->tol + past;
+  double reach_b = 1.5 * max_spacing(s, B) + 1.5 * chord + s->tol + past;
   bsfit__model_foot(ma, qa, f, ta);
   bsfit__model_foot(mb, qb, f, tb);
   if (hypot(x[0] - qa[0], x[1] - qa[1]) > reach_a || hypot(x[0] - qb[0], x[1] - qb[1]) > reach_b)
@@ -663,6 +667,56 @@ static size_t absorb_strays(const seg_section *s, bsfit_piece *p, seg_model *md,
       if (to[k] == 1) p[ib].first = (p[ib].first + s->m - 1) % s->m, p[ib].count++;
     bsfit__segment_refit(s, &p[ia], &md[ia]);
     bsfit__segment_refit(s, &p[ib], &md[ib]);
+    memmove(&p[i], &p[i + 1], (np - i - 1) * sizeof *p);
+    memmove(&md[i], &md[i + 1], (np - i - 1) * sizeof *md);
+    np--;
+  }
+  return np;
+}
+
+/* Under noise an arc's run may stop a few samples short of its end (one sample a little
+** past the tolerance of the whole run's fit), and a short line then takes the arc's last
+** samples and meets it tangentially: a D's corner moved out along the line by a third of
+** the noise. A line is the arc's next to it when the arc, refitted with the line's samples,
+** holds them within twice the tolerance (as absorb_strays allows a stray) and its
+** residual grows by at most the line's own plus 9 sigma^2 (the chi-square at 99% of the
+** line's two parameters: the samples tell the line from the arc no better than chance).
+** Returns 1 when the arc took the line. */
+static int arc_takes_line(const seg_section *s, bsfit_piece *L, bsfit_piece *A, seg_model *ma,
+                          int line_first) {
+  size_t nl = piece_count(s, L), na = piece_count(s, A);
+  size_t first = line_first ? L->first : A->first;
+  size_t end = line_first ? (A->first + na) : (L->first + nl); /* one past, unwrapped below */
+  size_t n = (end + s->m - first) % s->m;
+  double rms = 0, max, unit2 = s->unit * s->unit;
+  seg_model mt;
+  if (n != na + nl && n + 1 != na + nl) return 0; /* not next to each other */
+  max = fit_model_from(s, ARC, first, n, ma, &mt, &rms);
+  if (!(max <= 2 * s->tol)) return 0;
+  if (rms * rms * (double)n > L->rms * L->rms * (double)nl + A->rms * A->rms * (double)na +
+                                       9.0 * unit2)
+    return 0;
+  A->first = first, A->count = n;
+  bsfit__segment_refit(s, A, ma);
+  return 1;
+}
+
+/* arc_takes_line over the section (noisy sections); returns the new number of pieces */
+static size_t arcs_take_lines(const seg_section *s, bsfit_piece *p, seg_model *md, size_t np) {
+  size_t i = 0;
+  while (i < np && np > 2) {
+    size_t ia = (i + np - 1) % np, ib = (i + 1) % np;
+    int took = 0;
+    if (p[i].kind == LINE) {
+      int can_a = p[ia].kind == ARC && (s->closed || i > 0);
+      int can_b = p[ib].kind == ARC && (s->closed || i + 1 < np);
+      if (can_b && arc_takes_line(s, &p[i], &p[ib], &md[ib], 1)) took = 1;
+      else if (can_a && arc_takes_line(s, &p[i], &p[ia], &md[ia], 0)) took = 1;
+    }
+    if (!took) {
+      i++;
+      continue;
+    }
     memmove(&p[i], &p[i + 1], (np - i - 1) * sizeof *p);
     memmove(&md[i], &md[i + 1], (np - i - 1) * sizeof *md);
     np--;
@@ -981,6 +1035,7 @@ static size_t finish_pieces(const seg_section *s, bsfit_piece *p, seg_model *md,
   }
   np = s->noisy ? absorb_strays(s, p, md, np) : absorb_free_runs(s, p, md, np);
   short_runs(s, p, md, np);
+  if (s->noisy) np = arcs_take_lines(s, p, md, np);
   rebalance(s, p, md, np);
   if (np == 1 && s->closed && p[0].kind == ARC &&
       goes_round(s, &p[0], &md[0])) { /* a whole circle */
