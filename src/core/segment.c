@@ -614,6 +614,13 @@ static int join_pieces(const seg_section *s, bsfit_piece *A, const seg_model *ma
   return 1;
 }
 
+/* removes piece i (and its model) from the list of np; returns np - 1 */
+static size_t drop_piece(bsfit_piece *p, seg_model *md, size_t np, size_t i) {
+  memmove(&p[i], &p[i + 1], (np - i - 1) * sizeof *p);
+  memmove(&md[i], &md[i + 1], (np - i - 1) * sizeof *md);
+  return np - 1;
+}
+
 /* A free piece of 2 (3) samples between two primitives becomes the line (circle)
 ** through them when both its ends then meet the neighbours: a short side, or an arc
 ** sampled too sparsely to be told from a curve, that both neighbours confirm. */
@@ -667,9 +674,7 @@ static size_t absorb_strays(const seg_section *s, bsfit_piece *p, seg_model *md,
       if (to[k] == 1) p[ib].first = (p[ib].first + s->m - 1) % s->m, p[ib].count++;
     bsfit__segment_refit(s, &p[ia], &md[ia]);
     bsfit__segment_refit(s, &p[ib], &md[ib]);
-    memmove(&p[i], &p[i + 1], (np - i - 1) * sizeof *p);
-    memmove(&md[i], &md[i + 1], (np - i - 1) * sizeof *md);
-    np--;
+    np = drop_piece(p, md, np, i);
   }
   return np;
 }
@@ -717,9 +722,7 @@ static size_t arcs_take_lines(const seg_section *s, bsfit_piece *p, seg_model *m
       i++;
       continue;
     }
-    memmove(&p[i], &p[i + 1], (np - i - 1) * sizeof *p);
-    memmove(&md[i], &md[i + 1], (np - i - 1) * sizeof *md);
-    np--;
+    np = drop_piece(p, md, np, i);
   }
   return np;
 }
@@ -761,9 +764,7 @@ static size_t absorb_free_runs(const seg_section *s, bsfit_piece *p, seg_model *
       i++;
       continue;
     }
-    memmove(&p[i], &p[i + 1], (np - i - 1) * sizeof *p);
-    memmove(&md[i], &md[i + 1], (np - i - 1) * sizeof *md);
-    np--;
+    np = drop_piece(p, md, np, i);
   }
   return np;
 }
