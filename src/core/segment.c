@@ -502,16 +502,13 @@ static int touching(const seg_section *s, const seg_model *ma, const seg_model *
 }
 
 /* Is x where A (last sample qa) may meet B (first sample qb)? Beyond qa along A, before
-** qb along B (by `slack` at most), and within reach of both (as far as the pieces' own
-** spacing; a line as far as the slack besides: it runs within the tolerance of the arc
-** it touches for sqrt(2 r tol) past the touching point, however densely the arc is
-** sampled. Two arcs are not given that reach: a smooth curve's arcs overlap that far, and
-** were then read as tangent arcs, a cam of 200 samples 4 times farther from the truth). */
+** qb along B (by `slack` at most), and within reach of both: as far as the pieces' own
+** spacing, and `past` farther (a tangent join's, below). */
 static int in_gap(const seg_section *s, const bsfit_piece *A, const seg_model *ma,
-                  const bsfit_piece *B, const seg_model *mb, const double *x, double slack) {
+                  const bsfit_piece *B, const seg_model *mb, const double *x, double slack,
+                  double past) {
   const double *qa = sample(s, A->first + A->count - 1), *qb = sample(s, B->first);
   double ta[2], tb[2], f[2], chord = hypot(qb[0] - qa[0], qb[1] - qa[1]);
-  double past = ma->kind == LINE || mb->kind == LINE ? slack : 0.0;
   double reach_a = 1.5 * max_spacing(s, A) + 1.5 * chord + s->tol + past;
   double reach_b = 1.5 * max_spacing(s, B) + 1.5 * chord + s->tol + past;
   bsfit__model_foot(ma, qa, f, ta);
@@ -533,11 +530,17 @@ static int meet(const seg_section *s, const bsfit_piece *A, const seg_model *ma,
   int nc = 0, k, found = 0;
   if (touching(s, ma, mb, x)) {
     /* models that touch stay within tol of each other for sqrt(2 r tol) on either side
-    ** of the touching point: a sample that far past it fits either piece */
-    double r = ma->kind == ARC ? ma->circle.r : mb->circle.r;
+    ** of the touching point: a sample that far past it fits either piece, and a line may
+    ** end that far past it however densely the arc is sampled (before, a rounded rectangle
+    ** of 200 noisy samples per side was bridged at its fillets). Two arcs are not given
+    ** that reach: a smooth curve's arcs overlap that far, and were then read as tangent
+    ** arcs (a cam of 200 samples 4 times farther from the truth). */
+    double r = ma->kind == ARC ? ma->circle.r : mb->circle.r, slack;
     if (ma->kind == ARC && mb->kind == ARC && mb->circle.r < r) r = mb->circle.r;
-    return in_gap(s, A, ma, B, mb, x, fmax(2 * s->tol, sqrt(2 * r * s->tol))) ? BSFIT_JOIN_TANGENT
-                                                                              : 0;
+    slack = fmax(2 * s->tol, sqrt(2 * r * s->tol));
+    return in_gap(s, A, ma, B, mb, x, slack, ma->kind == ARC && mb->kind == ARC ? 0.0 : slack)
+               ? BSFIT_JOIN_TANGENT
+               : 0;
   }
   if (ma->kind == LINE && mb->kind == LINE)
     nc = bsfit__meet_lines(&ma->line, &mb->line, cand[0]);
@@ -549,7 +552,7 @@ static int meet(const seg_section *s, const bsfit_piece *A, const seg_model *ma,
     nc = bsfit__meet_circles(&ma->circle, &mb->circle, cand);
   for (k = 0; k < nc; k++) {
     double *c = cand[k], d = hypot(c[0] - qa[0], c[1] - qa[1]) + hypot(c[0] - qb[0], c[1] - qb[1]);
-    if (in_gap(s, A, ma, B, mb, c, 2 * s->tol) && d < best)
+    if (in_gap(s, A, ma, B, mb, c, 2 * s->tol, 0.0) && d < best)
       best = d, x[0] = c[0], x[1] = c[1], found = 1;
   }
   if (!found) return 0;
@@ -693,13 +696,13 @@ static int arc_takes_line(const seg_section *s, bsfit_piece *L, bsfit_piece *A, 
   size_t first = line_first ? L->first : A->first;
   size_t end = line_first ? (A->first + na) : (L->first + nl); /* one past, unwrapped below */
   size_t n = (end + s->m - first) % s->m;
-  double rms = 0, max, unit2 = s->unit * s->unit;
+  double rms = 0, max;
   seg_model mt;
   if (n != na + nl && n + 1 != na + nl) return 0; /* not next to each other */
   max = fit_model_from(s, ARC, first, n, ma, &mt, &rms);
   if (!(max <= 2 * s->tol)) return 0;
   if (rms * rms * (double)n > L->rms * L->rms * (double)nl + A->rms * A->rms * (double)na +
-                                       9.0 * unit2)
+                                  9.0 * s->unit * s->unit)
     return 0;
   A->first = first, A->count = n;
   bsfit__segment_refit(s, A, ma);
@@ -711,18 +714,13 @@ static size_t arcs_take_lines(const seg_section *s, bsfit_piece *p, seg_model *m
   size_t i = 0;
   while (i < np && np > 2) {
     size_t ia = (i + np - 1) % np, ib = (i + 1) % np;
-    int took = 0;
-    if (p[i].kind == LINE) {
-      int can_a = p[ia].kind == ARC && (s->closed || i > 0);
-      int can_b = p[ib].kind == ARC && (s->closed || i + 1 < np);
-      if (can_b && arc_takes_line(s, &p[i], &p[ib], &md[ib], 1)) took = 1;
-      else if (can_a && arc_takes_line(s, &p[i], &p[ia], &md[ia], 0)) took = 1;
-    }
-    if (!took) {
+    int to_b = p[ib].kind == ARC && (s->closed || i + 1 < np);
+    int to_a = p[ia].kind == ARC && (s->closed || i > 0);
+    if (p[i].kind == LINE && ((to_b && arc_takes_line(s, &p[i], &p[ib], &md[ib], 1)) ||
+                              (to_a && arc_takes_line(s, &p[i], &p[ia], &md[ia], 0))))
+      np = drop_piece(p, md, np, i);
+    else
       i++;
-      continue;
-    }
-    np = drop_piece(p, md, np, i);
   }
   return np;
 }

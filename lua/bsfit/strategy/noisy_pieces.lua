@@ -45,8 +45,8 @@ local M = {}
 local EVIDENCE, EVIDENCE_STEEP, STEEP, MIN_TURN, AGREE = 25, 14, 60, 15, 1.25
 -- Pieces with no corner at all: their noise at most the windows'. Tangent arcs follow a
 -- cam or an ellipse within the noise, 3 to 7 times farther from the truth than the smooth
--- curve: 1.25 let 19 of 480 smooth sections through so, 1.0 lets 4 (ellipses within the
--- noise of a four-arc oval), and dense rounded rectangles and filleted polygons, whose
+-- curve: 1.25 let 18 of test_auto's 180 smooth sections through so, 1.0 lets 3 (ellipses
+-- within the noise of a four-arc oval), and dense rounded rectangles and filleted polygons, whose
 -- windows read their fillets' curvature jumps as noise, still pass.
 local AGREE_NO_CORNER = 1.0
 M.MAX = 500 -- larger noisy sections keep the smooth path (the noise search costs m r)
@@ -85,8 +85,9 @@ local function weak_message(pieces, i)
   return ("weak corner %d: turn %.3g evidence %.3g"):format(i, pieces[i].turn, pieces[i].evidence)
 end
 
--- What the pieces hold and how they meet: the indices of the weak corners, or nil and why
-local function screen(P, pieces)
+-- What the pieces hold and how they meet: the indices of the weak corners, or nil and why.
+-- s: the noise read off the pieces, sigma: the windows'.
+local function screen(P, pieces, s, sigma)
   local held, weak, strong = 0, {}, 0
   for i, p in ipairs(pieces) do
     local q = pieces[(i - 2) % #pieces + 1]
@@ -103,7 +104,11 @@ local function screen(P, pieces)
   -- corners the data do not confirm: where others are (a made object), each is softened
   -- into a bend (below); where none is, the section is a smooth curve
   if #weak > 0 and strong == 0 then return nil, weak_message(pieces, weak[1]) end
-  return weak, strong
+  -- no corner at all: the pieces must explain the samples as well as the windows
+  if strong == 0 and not (s <= AGREE_NO_CORNER * sigma) then
+    return nil, ("no corner, and the noise of the pieces %.3g is above the windows' %.3g"):format(s, sigma)
+  end
+  return weak
 end
 
 -- the pieces with each weak corner softened into a bend (sharp.soften), or nil and why
@@ -141,11 +146,9 @@ function M.find(P, sigma, closed)
   -- the smooth curve follows it as well, and stays polynomial
   if #pieces < 2 then return nil, "one piece", found end
   found.candidate = { pieces = pieces, sigma = s }
-  local weak, strong = screen(P, pieces)
-  if not weak then return nil, strong, found end
-  if strong == 0 and not (s <= AGREE_NO_CORNER * sigma) then
-    return nil, ("no corner, and the noise of the pieces %.3g is above the windows' %.3g"):format(s, sigma), found
-  end
+  local weak
+  weak, why = screen(P, pieces, s, sigma)
+  if not weak then return nil, why, found end
   pieces, why = soften(P, pieces, weak)
   if not pieces then return nil, why, found end
   why = sharp.degenerate(pieces) or sharp.far_corner(P, pieces)
