@@ -340,28 +340,41 @@ M.length = length
 
 -- The sweep of sparse and noisy sections (issue 14: test_sharp_noisy.lua, and
 -- tests/bench/sweep_sharp.lua to measure a change to it): every outline, in the order of
--- names(), x `pers` samples per side x noise `rels` of its size x even and uneven samples,
--- each section with its own seed: opts.seed(k, per, j) of the outline's place k and the
--- noise's place j (1000 k + 10 per + j unless given). An iterator of cases {name, o, per,
--- rel, uneven, seed, sigma (absolute), size, pts}; with no opts the issue's 390 sections:
+-- names() (or those of opts.names), x `pers` samples per side x noise `rels` of its size x
+-- even and uneven samples (opts.unevens: {false, true}) x `draws` draws (1), each section
+-- with its own seed: opts.seed(k, per, j, d) of the outline's place k in names(), the
+-- noise's place j and the draw d (1000 k + 10 per + j unless given). An iterator of cases
+-- {name, o, per, rel, uneven, draw, seed, sigma (absolute), size, pts}; with no opts the
+-- issue's 390 sections:
 --   for c in shapes.sweep_cases() do ... end
 --   for c in shapes.sweep_cases { pers = { 4, 6 }, rels = { 1e-2 }, seed = f } do ... end
 function M.sweep_cases(opts)
   opts = opts or {}
   local pers, rels = opts.pers or { 3, 4, 5, 6, 10 }, opts.rels or { 1e-4, 1e-3, 3e-3 }
+  local unevens, draws = opts.unevens or { false, true }, opts.draws or 1
   local seed = opts.seed or function(k, per, j) return 1000 * k + 10 * per + j end
+  local wanted = nil
+  if opts.names then
+    wanted = {}
+    for _, name in ipairs(opts.names) do wanted[name] = true end
+  end
   local all = M.all()
+  local function yield_draws(k, name, per, j, rel, uneven)
+    local o = all[name]
+    local size = M.size(o)
+    for d = 1, draws do
+      local c = { name = name, o = o, per = per, rel = rel, uneven = uneven, draw = d,
+                  seed = seed(k, per, j, d), sigma = rel * size, size = size }
+      c.pts = M.sample(o, per, { sigma = c.sigma, seed = c.seed, uneven = uneven })
+      coroutine.yield(c)
+    end
+  end
   return coroutine.wrap(function()
     for k, name in ipairs(M.names()) do
-      local o = all[name]
-      local size = M.size(o)
-      for _, per in ipairs(pers) do
-        for j, rel in ipairs(rels) do
-          for _, uneven in ipairs { false, true } do
-            local c = { name = name, o = o, per = per, rel = rel, uneven = uneven,
-                        seed = seed(k, per, j), sigma = rel * size, size = size }
-            c.pts = M.sample(o, per, { sigma = c.sigma, seed = c.seed, uneven = uneven })
-            coroutine.yield(c)
+      if not wanted or wanted[name] then
+        for _, per in ipairs(pers) do
+          for j, rel in ipairs(rels) do
+            for _, uneven in ipairs(unevens) do yield_draws(k, name, per, j, rel, uneven) end
           end
         end
       end

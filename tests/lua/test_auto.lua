@@ -143,8 +143,8 @@ end)
 
 -- A smooth noisy shape is followed by tangent arcs and lines within the noise (a cam by
 -- four arcs, an ellipse by an oval of four), but its curvature changes along them: such
--- pieces were taken for 19 of 480 smooth sections, 3 to 7 times farther from the truth than
--- the smooth curve. Pieces without a corner must explain the samples as well as the windows.
+-- pieces were taken for 18 of the 180 sections below, 3 to 7 times farther from the truth
+-- than the smooth curve. Pieces without a corner must explain the samples as well as the windows.
 -- Three remain (an ellipse of 80 or 200 samples at noise 3e-3, 0.0075 of its size of 2,
 -- is within that noise of a four-arc oval: the pieces' residual is below the windows').
 T.test("a smooth noisy shape is not read as tangent lines and arcs", function()
