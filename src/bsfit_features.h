@@ -66,10 +66,13 @@ typedef struct bsfit_segment_opts {
 ** from the origin, 10^4 times their size and more). The cover
 ** of the section is the one of least cost by dynamic programming: 2 per line (its
 ** parameters), 3 per arc, 1 per free sample plus 1 per free run, so a line beats an arc
-** and both beat free samples. On noisy data (sigma > 0, up to 2000 samples) a piece also
+** and both beat free samples. On noisy data (sigma > 0) a piece also
 ** costs its residual sum of squares in sigma^2, and each parameter param_cost sigma^2: a
 ** line that holds the first samples of the fillet after it within tol explains them worse
-** than the fillet does, and gives them up. Consecutive primitives meet where their models meet:
+** than the fillet does, and gives them up. A noisy section of more than 500 samples is
+** covered on every k-th sample (k = ceil(m / 500)), each boundary then placed among the
+** samples around it where the two models explain them best, and every model refitted on
+** all its samples. Consecutive primitives meet where their models meet:
 ** tangentially (G1) when their directions there differ by less than the noise allows,
 ** else at a corner; when the models do not meet between the two pieces' last and first
 ** samples, a free run bridges them. A free run meets a primitive at that primitive's

@@ -334,6 +334,10 @@ static double best_of_kind(const seg_section *s, size_t origin, size_t j, int ki
 #define RSS_PENALTY 32.0
 #define RSS_COST_MAX 2000
 
+/* Noisy sections of more samples are covered on every k-th sample (segment_dense.c):
+** the cover weighs its residuals there, at most 500 x the run length */
+#define DENSE_MOST 500
+
 static double piece_rss(const seg_section *s, int kind, size_t first, size_t n) {
   return kind == LINE ? bsfit__moments_line_rss(s->mom, first, n)
                       : bsfit__moments_arc_rss(s->mom, first, n);
@@ -1127,24 +1131,29 @@ bsfit_err bsfit_segment(const double *pts, size_t m, int dim, const bsfit_segmen
     goto done;
   }
   count_gaps(&s);
-  /* below 1e-6 of the size the moments' rounding is no longer far below sigma^2 */
-  s.penalty = o.param_cost > 0 ? o.param_cost : RSS_PENALTY;
-  if (s.noisy && isfinite(s.penalty) && m <= RSS_COST_MAX &&
-      o.sigma >= 1e-6 * bsfit__segment_size(pts, m)) {
-    if (bsfit__moments_init(&mom, pts, m, a) != BSFIT_OK) {
-      e = bsfit__fail(st, BSFIT_ENOMEM, "out of memory for the segmentation of %zu points", m);
+  if (s.noisy && m > DENSE_MOST) {
+    np = bsfit__dense_cover(&s, &o, DENSE_MOST, buf, &e, st);
+    if (e != BSFIT_OK) goto done;
+  } else {
+    /* below 1e-6 of the size the moments' rounding is no longer far below sigma^2 */
+    s.penalty = o.param_cost > 0 ? o.param_cost : RSS_PENALTY;
+    if (s.noisy && isfinite(s.penalty) && m <= RSS_COST_MAX &&
+        o.sigma >= 1e-6 * bsfit__segment_size(pts, m)) {
+      if (bsfit__moments_init(&mom, pts, m, a) != BSFIT_OK) {
+        e = bsfit__fail(st, BSFIT_ENOMEM, "out of memory for the segmentation of %zu points", m);
+        goto done;
+      }
+      s.mom = &mom;
+    }
+    if ((e = maximal_runs(&s, LINE, len[0])) != BSFIT_OK ||
+        (e = maximal_runs(&s, ARC, len[1])) != BSFIT_OK) {
+      e = bsfit__fail(st, e, "segmentation interrupted");
       goto done;
     }
-    s.mom = &mom;
+    heaps[0].at = heap_at, heaps[0].key = heap_key, heaps[0].below = heap_below;
+    heaps[1].at = heap_at + m, heaps[1].key = heap_key + m, heaps[1].below = heap_below + m;
+    np = cover(&s, len, prim, fr, heaps, buf);
   }
-  if ((e = maximal_runs(&s, LINE, len[0])) != BSFIT_OK ||
-      (e = maximal_runs(&s, ARC, len[1])) != BSFIT_OK) {
-    e = bsfit__fail(st, e, "segmentation interrupted");
-    goto done;
-  }
-  heaps[0].at = heap_at, heaps[0].key = heap_key, heaps[0].below = heap_below;
-  heaps[1].at = heap_at + m, heaps[1].key = heap_key + m, heaps[1].below = heap_below + m;
-  np = cover(&s, len, prim, fr, heaps, buf);
   np = finish_pieces(&s, buf, md, np);
   for (i = 0; i < np && i < cap; i++) pieces[i] = buf[i];
   *count = np;

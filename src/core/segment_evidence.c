@@ -148,6 +148,26 @@ static double pcubic_rss(const seg_section *s, size_t first, size_t n) {
 ** units of sigma^2 = (tol / tol_sigma)^2. */
 #define EVIDENCE_TURN (PI / 4)
 
+/* On a dense section 8 samples span less than the noise, and one cubic follows a corner
+** within it: the window then reaches REACH_SIGMA sigma from the join along each piece
+** (a cubic misses a right angle over a window of half-length L by about L/30 at its
+** worst, several sigma here), up to REACH_MAX samples. */
+#define REACH_SIGMA 32.0
+#define REACH_MAX 512
+
+/* how many samples of p, from its last (end) or first, the window takes: EVIDENCE_REACH,
+** or on a dense section as many as lie within REACH_SIGMA sigma of that sample */
+static size_t dense_reach(const seg_section *s, const bsfit_piece *p, int end, double sigma) {
+  const double *q0 = sample(s, end ? p->first + p->count - 1 : p->first);
+  size_t n = p->count < REACH_MAX ? p->count : REACH_MAX, k;
+  if (n <= EVIDENCE_REACH) return n;
+  for (k = EVIDENCE_REACH; k < n; k++) {
+    const double *q = sample(s, end ? p->first + p->count - 1 - k : p->first + k);
+    if (!(hypot(q[0] - q0[0], q[1] - q0[1]) < REACH_SIGMA * sigma)) break;
+  }
+  return k;
+}
+
 /* How many samples of an arc, counted from its sample `from` (its first when step is +1,
 ** its last when -1), lie within EVIDENCE_TURN of that sample around its centre: an arc's
 ** tangent turns as it goes, and two half ellipses meet at the ends of the major axis in
@@ -208,8 +228,8 @@ static double bend_rss(const seg_section *s, const bsfit_piece *A, const seg_mod
 
 double bsfit__join_evidence(const seg_section *s, const bsfit_piece *A, const seg_model *ma,
                             const bsfit_piece *B, const seg_model *mb, double sigma) {
-  size_t na = arc_reach(s, A, ma, A->count < EVIDENCE_REACH ? A->count : EVIDENCE_REACH, 1);
-  size_t nb = arc_reach(s, B, mb, B->count < EVIDENCE_REACH ? B->count : EVIDENCE_REACH, 0), k,
+  size_t na = arc_reach(s, A, ma, dense_reach(s, A, 1, sigma), 1);
+  size_t nb = arc_reach(s, B, mb, dense_reach(s, B, 0, sigma), 0), k,
          first, n;
   int shared = B->first == (A->first + A->count - 1) % s->m;
   double two = 0, one, rms;

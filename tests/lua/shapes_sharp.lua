@@ -335,6 +335,58 @@ M.length = length
 -- }======================================================================
 
 -- {======================================================================
+-- Where a corner may be found: the true corners, and the vertex of every arc shorter than
+-- the sampling's step h (the issue: "a fillet wider than the local spacing is not a
+-- corner"; one narrower, sampled once or not at all, may be one), where the lines tangent
+-- at its ends meet; likewise an arc whose vertex is within 3 sigma of it (r (1/cos(sweep/2)
+-- - 1) <= 3 sigma: at that noise the samples cannot tell the fillet from its corner).
+function M.corner_places(o, h, sigma)
+  local at = {}
+  for _, v in ipairs(o.corners) do at[#at + 1] = v end
+  for _, q in ipairs(o.prims) do
+    local sag = q.kind == "arc" and q.r * (1 / math.cos(q.sweep / 2) - 1)
+    if q.kind == "arc" and (q.r * math.abs(q.sweep) < h or sag <= 3 * (sigma or 0))
+       and math.abs(q.sweep) < 0.9 * math.pi then
+      local mid, d = q.a0 + q.sweep / 2, q.r / math.cos(q.sweep / 2)
+      at[#at + 1] = { q.c[1] + d * math.cos(mid), q.c[2] + d * math.sin(mid) }
+    end
+  end
+  return at
+end
+
+-- the largest step between consecutive samples (closing step included)
+function M.spacing(pts)
+  local h = M.dist(pts[#pts], pts[1])
+  for i = 2, #pts do h = math.max(h, M.dist(pts[i], pts[i - 1])) end
+  return h
+end
+
+-- The issue's checks of the pieces of outline o read off samples pts (rep.pieces, or nil
+-- for the smooth path): {corners = n, corners_ok = how many within the largest step of a
+-- place a corner may be (corner_places), radii = arcs, radii_ok = how many within 2% of the
+-- radius of the true arc whose centre is nearest}.
+function M.features_found(o, pts, pieces)
+  local r, hs = { corners = 0, corners_ok = 0, radii = 0, radii_ok = 0 }, M.spacing(pts)
+  local places = M.corner_places(o, hs)
+  for _, p in ipairs(pieces or {}) do
+    if p.join == "corner" then
+      local best = math.huge
+      for _, v in ipairs(places) do best = math.min(best, M.dist(v, p.start)) end
+      r.corners = r.corners + 1
+      if best <= hs then r.corners_ok = r.corners_ok + 1 end
+    end
+    if p.kind == "arc" then
+      local best, tr = math.huge, nil
+      for _, q in ipairs(o.prims) do
+        if q.kind == "arc" and M.dist(q.c, p.centre) < best then best, tr = M.dist(q.c, p.centre), q end
+      end
+      r.radii = r.radii + 1
+      if tr and math.abs(p.radius - tr.r) <= 0.02 * tr.r then r.radii_ok = r.radii_ok + 1 end
+    end
+  end
+  return r
+end
+
 -- The sweep of sparse and noisy sections
 -- =======================================================================
 

@@ -15,34 +15,8 @@ local shapes = require "shapes_sharp"
 local synth = require "synth"
 local auto = require "bsfit.strategy.auto"
 
-local dist = shapes.dist
+local dist, corner_places, spacing = shapes.dist, shapes.corner_places, shapes.spacing
 local ALL, NAMES = shapes.all(), shapes.names()
-
--- Where a corner may be found: the true corners, and the vertex of every arc shorter than
--- the sampling's step h (the issue: "a fillet wider than the local spacing is not a
--- corner"; one narrower, sampled once or not at all, may be one), where the lines tangent
--- at its ends meet; likewise an arc whose vertex is within 3 sigma of it (r (1/cos(sweep/2)
--- - 1) <= 3 sigma: at that noise the samples cannot tell the fillet from its corner).
-local function corner_places(o, h, sigma)
-  local at = {}
-  for _, v in ipairs(o.corners) do at[#at + 1] = v end
-  for _, q in ipairs(o.prims) do
-    local sag = q.kind == "arc" and q.r * (1 / math.cos(q.sweep / 2) - 1)
-    if q.kind == "arc" and (q.r * math.abs(q.sweep) < h or sag <= 3 * (sigma or 0))
-       and math.abs(q.sweep) < 0.9 * math.pi then
-      local mid, d = q.a0 + q.sweep / 2, q.r / math.cos(q.sweep / 2)
-      at[#at + 1] = { q.c[1] + d * math.cos(mid), q.c[2] + d * math.sin(mid) }
-    end
-  end
-  return at
-end
-
--- the largest step between consecutive samples (closing step included)
-local function spacing(pts)
-  local h = dist(pts[#pts], pts[1])
-  for i = 2, #pts do h = math.max(h, dist(pts[i], pts[i - 1])) end
-  return h
-end
 
 -- One section (a case of shapes.sweep_cases): its checks that must hold, and what it
 -- measures. Returns {pieces, within (Hausdorff), ratio, corners_ok, corners, radii_ok, radii}.
@@ -62,24 +36,8 @@ local function run_case(c)
   local r = { pieces = rep.pieces ~= nil, ratio = h / (3 * sigma + 1e-3 * size), closed = rep.closed,
               corners = 0, corners_ok = 0, radii = 0, radii_ok = 0 }
   r.within = r.ratio <= 1
-  local hs = spacing(pts)
-  local places = corner_places(o, hs)
-  for _, p in ipairs(rep.pieces or {}) do
-    if p.join == "corner" then
-      local best = math.huge
-      for _, v in ipairs(places) do best = math.min(best, dist(v, p.start)) end
-      r.corners = r.corners + 1
-      if best <= hs then r.corners_ok = r.corners_ok + 1 end
-    end
-    if p.kind == "arc" then
-      local best, tr = math.huge, nil
-      for _, q in ipairs(o.prims) do
-        if q.kind == "arc" and dist(q.c, p.centre) < best then best, tr = dist(q.c, p.centre), q end
-      end
-      r.radii = r.radii + 1
-      if tr and math.abs(p.radius - tr.r) <= 0.02 * tr.r then r.radii_ok = r.radii_ok + 1 end
-    end
-  end
+  local found = shapes.features_found(o, pts, rep.pieces)
+  for k, v in pairs(found) do r[k] = v end
   return r
 end
 
@@ -90,7 +48,7 @@ end
 -- before the noise search's finer levels, softened weak corners, fillets that claim their
 -- samples and pieces weighed by their residuals; before this work 82 within, 95 through
 -- the pieces)
-local FLOOR = { within = 212, pieces = 264, pieces_within = 202, corners = 0.99, radii = 0.8 }
+local FLOOR = { within = 217, pieces = 266, pieces_within = 209, corners = 0.99, radii = 0.8 }
 
 T.test("sparse and noisy sections: no error, closed, no loop; the issue's numbers measured on all", function()
   local rows, tot = {}, { n = 0, pieces = 0, within = 0, pw = 0, c = 0, cok = 0, r = 0, rok = 0 }

@@ -208,6 +208,8 @@ function M.params(P, ctx, forced, sub)
     u[i0] = u0
     for i = i0 + 1, math.min(i1 - 1, m) do u[i] = u0 + (u1 - u0) * (i - i0) / (i1 - i0) end
   end
+  -- an open section's last point ends its parameters (the subsample's last may fall short)
+  if not is_closed then u[m] = 1 end
   if is_closed then
     local below1 = 1 - 2 ^ -52
     for i = 1, m do if u[i] >= 1 then u[i] = below1 end end

@@ -313,20 +313,18 @@ function steps.segment(P, ctx)
   if P:dim() ~= 2 or #P < 6 or ctx.settings.robust or common.trusted(ctx) then return {} end
   -- a large section is screened on its subsample first: noisy data has no exact runs
   local sub = subsample(ctx, P)
-  if sub and not ctx.cache.exact_pieces then
+  local pieces = ctx.cache.exact_pieces
+  if not pieces and sub then
     local screen = common.ok("segmentation", bs.geom.segment(sub.P, { closed = closed(ctx) }))
-    if not sharp.has_features(screen, #sub.P) then return {} end
+    if not sharp.has_features(screen, #sub.P) then pieces = {} end
   end
-  local pieces = ctx.cache.exact_pieces or
-                 common.ok("segmentation", bs.geom.segment(P, { closed = closed(ctx) }))
+  pieces = pieces or common.ok("segmentation", bs.geom.segment(P, { closed = closed(ctx) }))
   if sharp.has_features(pieces, #P) then ctx.segment_sigma = 0; return pieces end
-  if #P <= noisy.MAX then
-    local pieces, why, found = noisy.find(P, ctx.sigma, closed(ctx))
-    ctx.sharp_rejected, ctx.sharp_candidate = why, found.candidate -- for the loops step
-    if pieces then ctx.segment_sigma, ctx.sharp_curve = found.sigma, found.curve end
-    return pieces or {}
-  end
-  return {}
+  local found, why
+  pieces, why, found = noisy.find(P, ctx.sigma, closed(ctx))
+  ctx.sharp_rejected, ctx.sharp_candidate = why, found.candidate -- for the loops step
+  if pieces then ctx.segment_sigma, ctx.sharp_curve = found.sigma, found.curve end
+  return pieces or {}
 end
 
 function steps.params(P, ctx)
