@@ -330,12 +330,9 @@ static double best_of_kind(const seg_section *s, size_t origin, size_t j, int ki
 ** line run on into the fillet after it, one side of a sparse corner) pays for it, and one
 ** more piece is worth RSS_PENALTY sigma^2 per parameter (about what chance gives a
 ** parameter that explains nothing; 2 is Akaike's, ln m Schwarz's). Every start is tried,
-** O(m x run length): only sections of up to RSS_COST_MAX samples are so weighed. */
+** O(m x run length): noisy sections of more than DENSE_MOST samples are covered on every
+** k-th sample (segment_dense.c), so the weighing costs at most DENSE_MOST x run length. */
 #define RSS_PENALTY 32.0
-#define RSS_COST_MAX 2000
-
-/* Noisy sections of more samples are covered on every k-th sample (segment_dense.c):
-** the cover weighs its residuals there, at most 500 x the run length */
 #define DENSE_MOST 500
 
 static double piece_rss(const seg_section *s, int kind, size_t first, size_t n) {
@@ -1137,8 +1134,7 @@ bsfit_err bsfit_segment(const double *pts, size_t m, int dim, const bsfit_segmen
   } else {
     /* below 1e-6 of the size the moments' rounding is no longer far below sigma^2 */
     s.penalty = o.param_cost > 0 ? o.param_cost : RSS_PENALTY;
-    if (s.noisy && isfinite(s.penalty) && m <= RSS_COST_MAX &&
-        o.sigma >= 1e-6 * bsfit__segment_size(pts, m)) {
+    if (s.noisy && isfinite(s.penalty) && o.sigma >= 1e-6 * bsfit__segment_size(pts, m)) {
       if (bsfit__moments_init(&mom, pts, m, a) != BSFIT_OK) {
         e = bsfit__fail(st, BSFIT_ENOMEM, "out of memory for the segmentation of %zu points", m);
         goto done;
