@@ -108,7 +108,10 @@ BSFIT_API bsfit_err bsfit_segment(const double *pts, size_t m, int dim,
 ** models left a robust residual below the start (the first guess was above the noise),
 ** the levels below the start, down to a sixteenth of it: the first that matches. Sparse samples of a contour that bends between them make window-based
 ** estimates (bsfit_noise_sigma) many times too large; this one is not, where lines and
-** arcs hold the samples. Cost: up to ~35 segmentations (typically 10-20).
+** arcs hold the samples. A section of more than 500 samples is read on every k-th sample
+** (k = ceil(m / 500)): each keeps its noise, and the search costs the same from 500
+** samples up (it took 0.9 s on every one of 40000). Cost: up to ~35 segmentations
+** (typically 10-20).
 ** @param[in]  max_sigma the highest level tried (<= 0: 5% of the size): a caller that
 **                   will not believe a larger one saves the costly high levels, where
 **                   runs grow long.

@@ -55,6 +55,19 @@ int bsfit__meet_circles(const bsfit__circle *A, const bsfit__circle *B, double x
 /* Meeting point of two lines; 0 when parallel. */
 int bsfit__meet_lines(const bsfit__line *A, const bsfit__line *B, double x[2]);
 
+/* A noisy section of more samples is read on every k-th sample (k = ceil(m / 500)): the
+** segmentation's cover (segment_dense.c) and its noise search (segment_sigma.c) */
+#define BSFIT__DENSE_MOST 500
+
+/* segment_dense.c: every k-th of the m samples (k = ceil(m / most)), a new array of *msub
+** points (free it with 2 *msub doubles), *k the stride; NULL when out of memory */
+double *bsfit__spread(const double *pts, size_t m, size_t most, const bsfit_allocator *a,
+                      size_t *msub, size_t *k);
+
+/* segment.c: the distance of sample q to the model of piece p (a line through its ends, a
+** circle); 0 for a free piece */
+double bsfit__piece_dist(const bsfit_piece *p, const double *q);
+
 /* segment.c: the bounding-box diagonal of m 2D points, and the argument checks of
 ** bsfit_segment (shared with segment_sigma.c) */
 double bsfit__segment_size(const double *pts, size_t m);

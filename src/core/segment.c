@@ -330,10 +330,9 @@ static double best_of_kind(const seg_section *s, size_t origin, size_t j, int ki
 ** line run on into the fillet after it, one side of a sparse corner) pays for it, and one
 ** more piece is worth RSS_PENALTY sigma^2 per parameter (about what chance gives a
 ** parameter that explains nothing; 2 is Akaike's, ln m Schwarz's). Every start is tried,
-** O(m x run length): noisy sections of more than DENSE_MOST samples are covered on every
-** k-th sample (segment_dense.c), so the weighing costs at most DENSE_MOST x run length. */
+** O(m x run length): noisy sections of more than BSFIT__DENSE_MOST samples are covered on
+** every k-th sample (segment_dense.c), so the weighing costs at most that x run length. */
 #define RSS_PENALTY 32.0
-#define DENSE_MOST 500
 
 static double piece_rss(const seg_section *s, int kind, size_t first, size_t n) {
   return kind == LINE ? bsfit__moments_line_rss(s->mom, first, n)
@@ -444,6 +443,15 @@ void bsfit__segment_refit(const seg_section *s, bsfit_piece *p, seg_model *md) {
     memcpy(p->centre, md->circle.c, sizeof p->centre);
     p->radius = md->circle.r;
   }
+}
+
+/* features_internal.h */
+double bsfit__piece_dist(const bsfit_piece *p, const double *q) {
+  double dx, dy, l;
+  if (p->kind == BSFIT_PIECE_ARC) return fabs(hypot(q[0] - p->centre[0], q[1] - p->centre[1]) - p->radius);
+  if (p->kind == BSFIT_PIECE_FREE) return 0.0;
+  dx = p->end[0] - p->start[0], dy = p->end[1] - p->start[1], l = hypot(dx, dy);
+  return l > 0 ? fabs((q[0] - p->start[0]) * dy - (q[1] - p->start[1]) * dx) / l : 0.0;
 }
 
 /* segment_internal.h */
@@ -1128,8 +1136,8 @@ bsfit_err bsfit_segment(const double *pts, size_t m, int dim, const bsfit_segmen
     goto done;
   }
   count_gaps(&s);
-  if (s.noisy && m > DENSE_MOST) {
-    np = bsfit__dense_cover(&s, &o, DENSE_MOST, buf, &e, st);
+  if (s.noisy && m > BSFIT__DENSE_MOST) {
+    np = bsfit__dense_cover(&s, &o, buf, &e, st);
     if (e != BSFIT_OK) goto done;
   } else {
     /* below 1e-6 of the size the moments' rounding is no longer far below sigma^2 */

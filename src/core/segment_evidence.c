@@ -150,8 +150,9 @@ static double pcubic_rss(const seg_section *s, size_t first, size_t n) {
 
 /* On a dense section 8 samples span less than the noise, and one cubic follows a corner
 ** within it: the window then reaches REACH_SIGMA sigma from the join along each piece
-** (a cubic misses a right angle over a window of half-length L by about L/30 at its
-** worst, several sigma here), up to REACH_MAX samples. */
+** (the least-squares cubic over a right angle of sides L misses it by L/20 RMS, L/7.5 at
+** worst: 1.6 and 4 sigma here, 2.6 sigma^2 of evidence per sample), up to REACH_MAX
+** samples. */
 #define REACH_SIGMA 32.0
 #define REACH_MAX 512
 

@@ -68,11 +68,11 @@ static inline double model_dist(const seg_model *md, const double *x) {
 double bsfit__join_evidence(const seg_section *s, const bsfit_piece *A, const seg_model *ma,
                             const bsfit_piece *B, const seg_model *mb, double sigma);
 
-/* segment_dense.c: the cover of a dense noisy section (more than `most` samples), found on
-** every k-th sample and moved onto all (kind, first, count of each piece into p, room for
-** 2 m + 2); returns their number, or 0 with *e set */
-size_t bsfit__dense_cover(const seg_section *s, const bsfit_segment_opts *o, size_t most,
-                          bsfit_piece *p, bsfit_err *e, bsfit_status *st);
+/* segment_dense.c: the cover of a dense noisy section (more than BSFIT__DENSE_MOST samples),
+** found on every k-th sample and moved onto all (kind, first, count of each piece into p,
+** room for 2 m + 2); returns their number, or 0 with *e set */
+size_t bsfit__dense_cover(const seg_section *s, const bsfit_segment_opts *o, bsfit_piece *p,
+                          bsfit_err *e, bsfit_status *st);
 
 /* segment.c: refits p's model md to its samples, and sets p's max, rms (and centre,
 ** radius for arcs) */

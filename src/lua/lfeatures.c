@@ -15,7 +15,8 @@
 ** (arcs), turn = (degrees) and evidence = (sigma^2) at corner joins, rms =, max =
 ** (distances of its samples to its model)}.
 **   bs.geom.segment_sigma(P [, {closed = true, max = 0}]) --> the noise of a section of
-** lines and arcs, read off their own residuals (levels up to `max`; 0: 5% of the size).
+** lines and arcs, read off their own residuals (levels up to `max`; 0: 5% of the size;
+** at most 500 evenly spread samples are read).
 */
 #include "laux.h"
 

@@ -49,25 +49,11 @@ local EVIDENCE, EVIDENCE_STEEP, STEEP, MIN_TURN, AGREE = 25, 14, 60, 15, 1.25
 -- within the noise of a four-arc oval), and dense rounded rectangles and filleted polygons, whose
 -- windows read their fillets' curvature jumps as noise, still pass.
 local AGREE_NO_CORNER = 1.0
--- The noise of the pieces is read off at most SIGMA_SAMPLES evenly spread samples: the
--- search over noise levels segments the section a dozen times (913 ms for 40000 samples),
--- and every 4th or 80th sample of a dense section has the same noise (measured within a
--- few percent of the full search on dense letters, rounded rectangles and polygons).
-M.SIGMA_SAMPLES = 500
-
--- every k-th sample of P (k = ceil(#P / most)), or P itself when it has at most `most`
-local function spread(P, most)
-  if #P <= most then return P end
-  local k, t = math.ceil(#P / most), {}
-  for i = 1, #P, k do t[#t + 1] = { P:get(i) } end
-  return bs.points.new(t)
-end
-
 -- the noise read off the pieces, when it agrees with the windows'
 local function noise_of_pieces(P, sigma, closed)
   if not (sigma > 0) then return nil, "no noise" end
-  local s = common.ok("noise of the pieces", bs.geom.segment_sigma(spread(P, M.SIGMA_SAMPLES),
-                                                                   { closed = closed, max = AGREE * sigma }))
+  local s = common.ok("noise of the pieces",
+                      bs.geom.segment_sigma(P, { closed = closed, max = AGREE * sigma }))
   if s == 0 then -- no level up to the cap where the lines' and arcs' residual matched it
     return nil, ("no noise level of lines and arcs up to %.3g (windows %.3g)"):format(AGREE * sigma, sigma)
   end
