@@ -112,16 +112,16 @@ end
 -- shared machine: the minimum of many runs, in total and per step (each step's own
 -- minimum), for the noisy star and for sections of lines and arcs.
 local function minimum(P, runs)
-  local best, steps = math.huge, {}
+  local best, steps, rep = math.huge, {}, nil
   for _ = 1, runs do
     local t0 = clock()
-    local _, rep = auto.run(P)
+    rep = select(2, auto.run(P))
     best = math.min(best, clock() - t0)
     for k, v in pairs(rep.times) do steps[k] = math.min(steps[k] or math.huge, v) end
   end
   local parts = {}
   for _, name in ipairs(auto.order) do parts[#parts + 1] = ("%s %.3f"):format(name, steps[name] or 0) end
-  return best * 1000, table.concat(parts, ", ")
+  return best * 1000, table.concat(parts, ", "), rep
 end
 for _, c in ipairs {
   { "noisy star, 40 points", section(40, 3) },
@@ -145,8 +145,7 @@ for _, c in ipairs {
   { "T, 10^5 points, noise 1e-4", polygon(T, 12500, 6.4e-4) },
   { "T, 10^5 points, noise 1e-3", polygon(T, 12500, 6.4e-3) },
 } do
-  local ms, steps = minimum(c[2], 20)
-  local _, rep = auto.run(c[2])
+  local ms, steps, rep = minimum(c[2], 20)
   print(("auto, %-28s minimum of 20 runs %8.3f ms  (%s; steps, each its minimum: %s)"):format(
     c[1] .. ":", ms, rep.pieces and (#rep.pieces .. " pieces") or "smooth", steps))
 end

@@ -361,6 +361,15 @@ function M.spacing(pts)
   return h
 end
 
+-- the true arc of outline o whose centre is nearest to `centre`, and how far that is
+function M.true_arc(o, centre)
+  local best, tr = math.huge, nil
+  for _, q in ipairs(o.prims) do
+    if q.kind == "arc" and M.dist(q.c, centre) < best then best, tr = M.dist(q.c, centre), q end
+  end
+  return tr, best
+end
+
 -- The issue's checks of the pieces of outline o read off samples pts (rep.pieces, or nil
 -- for the smooth path): {corners = n, corners_ok = how many within the largest step of a
 -- place a corner may be (corner_places), radii = arcs, radii_ok = how many within 2% of the
@@ -376,10 +385,7 @@ function M.features_found(o, pts, pieces)
       if best <= hs then r.corners_ok = r.corners_ok + 1 end
     end
     if p.kind == "arc" then
-      local best, tr = math.huge, nil
-      for _, q in ipairs(o.prims) do
-        if q.kind == "arc" and M.dist(q.c, p.centre) < best then best, tr = M.dist(q.c, p.centre), q end
-      end
+      local tr = M.true_arc(o, p.centre)
       r.radii = r.radii + 1
       if tr and math.abs(p.radius - tr.r) <= 0.02 * tr.r then r.radii_ok = r.radii_ok + 1 end
     end

@@ -72,15 +72,6 @@ end
 -- Checks
 -- =======================================================================
 
--- the true arc nearest to a fitted centre
-local function true_arc(o, centre)
-  local best, tr = math.huge, nil
-  for _, q in ipairs(o.prims) do
-    if q.kind == "arc" and dist(q.c, centre) < best then best, tr = dist(q.c, centre), q end
-  end
-  return tr, best
-end
-
 -- the pieces of bs.geom.segment: as many lines and arcs as the outline has (a tangent
 -- join may leave an empty free bridge, which holds no sample), every arc on a true circle
 -- (centre and radius to 1e-9), every line's ends on the outline, a corner join at each
@@ -96,7 +87,7 @@ local function check_segment(P, o, size, what, lim)
     end
     got[p.kind] = got[p.kind] + 1
     if p.kind == "arc" then
-      local tr, off = true_arc(o, p.centre)
+      local tr, off = shapes.true_arc(o, p.centre)
       T.ok(tr and off <= lim and math.abs(p.radius - tr.r) <= math.max(1e-9 * tr.r, lim),
            ("%s: arc %d radius %.17g centre off by %g of the size"):format(what, i, p.radius,
                                                                              off / size))

@@ -255,10 +255,7 @@ T.test("noisy sections of lines and arcs: Hausdorff < 3 sigma + 1e-3, corners wi
                 T.ok(best <= spacing, ("%s: corner (%g, %g) is %g from the nearest true one"):format(
                   what, p.start[1], p.start[2], best))
               elseif p.kind == "arc" then
-                local best, tr = math.huge, nil
-                for _, q in ipairs(o.prims) do
-                  if q.kind == "arc" and dist(q.c, p.centre) < best then best, tr = dist(q.c, p.centre), q end
-                end
+                local tr = shapes.true_arc(o, p.centre)
                 T.ok(tr and math.abs(p.radius - tr.r) <= 0.02 * tr.r,
                      ("%s: radius %g, true %g"):format(what, p.radius, tr and tr.r or 0))
               end

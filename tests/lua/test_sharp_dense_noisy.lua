@@ -10,7 +10,7 @@
 -- 106 were within the issue's floor. The noise is now read off 500 evenly spread samples,
 -- the cover of a section of more than 500 is found on every k-th sample and moved onto
 -- all of them (segment_dense.c), and a corner's evidence counts the samples within
--- 32 sigma of it: 107 go through their pieces, 121 are within the floor.
+-- 32 sigma of it: 105 go through their pieces, 124 are within the floor.
 local T = require "tap"
 local bs = require "bsfit"
 local shapes = require "shapes_sharp"
@@ -44,6 +44,38 @@ T.test("dense noisy sections of lines and arcs go through their pieces: corners 
   T.ok(tot.within >= FLOOR.within, ("%d sections within the floor"):format(tot.within))
   T.ok(tot.cok >= FLOOR.corners * tot.c, ("corners within a sample: %d of %d"):format(tot.cok, tot.c))
   T.ok(tot.rok >= FLOOR.radii * tot.r, ("radii within 2%%: %d of %d"):format(tot.rok, tot.r))
+end)
+
+-- bs.geom.segment of a dense noisy section: the cover found on every k-th sample and moved
+-- onto all of them (segment_dense.c) is a cover of every sample (two pieces share at most
+-- a sample at each join), and no line or arc is left with
+-- fewer than 2 samples; and bs.geom.segment_sigma, reading 500 of them, finds the noise.
+T.test("dense noisy sections: every sample in a piece, none of too few; the noise of 500 samples", function()
+  local n, near = 0, 0
+  for c in shapes.sweep_cases { pers = { 60, 100, 300 }, unevens = { false } } do
+    local P = bs.points.new(c.pts)
+    local what = ("%s %d per side noise %g"):format(c.name, c.per, c.rel)
+    local pieces = bs.geom.segment(P, { closed = true, sigma = c.sigma })
+    local held, m = {}, #P
+    for i, p in ipairs(pieces) do
+      T.ok(p.kind == "free" or p.count >= 2, ("%s: %s %d holds %d samples"):format(what, p.kind, i, p.count))
+      for j = 0, p.count - 1 do
+        local s = (p.first - 1 + j) % m + 1
+        held[s] = (held[s] or 0) + 1
+      end
+    end
+    local missed, shared = 0, 0
+    for s = 1, m do
+      if not held[s] then missed = missed + 1 elseif held[s] > 1 then shared = shared + 1 end
+    end
+    T.eq(missed, 0, what .. ": samples in no piece")
+    T.ok(shared <= #pieces, ("%s: %d samples in two pieces"):format(what, shared))
+    local s = bs.geom.segment_sigma(P, { closed = true })
+    n = n + 1
+    if math.abs(s / c.sigma - 1) <= 0.2 then near = near + 1 end
+  end
+  print(("# segment_sigma within 20%% of the true noise on %d of %d dense sections"):format(near, n))
+  T.ok(near >= 0.85 * n, ("segment_sigma within 20%% on %d of %d"):format(near, n))
 end)
 
 -- A large open section whose samples crowd closer than the noise takes its parameters along

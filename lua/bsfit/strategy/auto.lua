@@ -300,6 +300,18 @@ end
 -- Steps
 -- =======================================================================
 
+-- The pieces of exact data (bs.geom.segment at sigma = 0), or nil. A large section is
+-- screened on its subsample first: noisy data has no exact runs.
+local function exact_pieces(P, ctx)
+  local pieces, sub = ctx.cache.exact_pieces, subsample(ctx, P)
+  if not pieces and sub then
+    local screen = common.ok("segmentation", bs.geom.segment(sub.P, { closed = closed(ctx) }))
+    if not sharp.has_features(screen, #sub.P) then return nil end
+  end
+  pieces = pieces or common.ok("segmentation", bs.geom.segment(P, { closed = closed(ctx) }))
+  return sharp.has_features(pieces, #P) and pieces or nil
+end
+
 -- Lines, arcs and free runs (bs.geom.segment), when lines and arcs explain the section:
 --   exact data: runs of 3 samples collinear, or 4 concyclic, to 1e-10 of the size,
 --     holding half the samples (this does not happen by chance under noise);
@@ -311,17 +323,9 @@ function steps.segment(P, ctx)
   -- down-weighted points and Huber reweighting ask for a fit that discounts samples: the
   -- pieces follow every sample they hold, so such sections take the smooth path
   if P:dim() ~= 2 or #P < 6 or ctx.settings.robust or common.trusted(ctx) then return {} end
-  -- a large section is screened on its subsample first: noisy data has no exact runs
-  local sub = subsample(ctx, P)
-  local pieces = ctx.cache.exact_pieces
-  if not pieces and sub then
-    local screen = common.ok("segmentation", bs.geom.segment(sub.P, { closed = closed(ctx) }))
-    if not sharp.has_features(screen, #sub.P) then pieces = {} end
-  end
-  pieces = pieces or common.ok("segmentation", bs.geom.segment(P, { closed = closed(ctx) }))
-  if sharp.has_features(pieces, #P) then ctx.segment_sigma = 0; return pieces end
-  local found, why
-  pieces, why, found = noisy.find(P, ctx.sigma, closed(ctx))
+  local exact = exact_pieces(P, ctx)
+  if exact then ctx.segment_sigma = 0; return exact end
+  local pieces, why, found = noisy.find(P, ctx.sigma, closed(ctx))
   ctx.sharp_rejected, ctx.sharp_candidate = why, found.candidate -- for the loops step
   if pieces then ctx.segment_sigma, ctx.sharp_curve = found.sigma, found.curve end
   return pieces or {}
