@@ -225,7 +225,9 @@ end
 
 -- Samples of outline o: per primitive k = per(q) points (a number, or a function of the
 -- primitive), evenly at fractions (j - 1/2)/k (so corners lie between samples) or, with
--- `uneven`, at sorted random fractions; noise sigma (absolute) with `seed`.
+-- `uneven`, at sorted random fractions; with `bare` = b, evenly over the fractions [b, 1 - b]
+-- only (each end of every primitive left unsampled over b of it); noise sigma (absolute)
+-- with `seed`.
 -- Returns a table of {x, y}.
 function M.sample(o, per, opts)
   opts = opts or {}
@@ -235,7 +237,13 @@ function M.sample(o, per, opts)
     local k = type(per) == "function" and per(q) or per
     local fs = {}
     for j = 1, k do
-      if opts.uneven then fs[j] = 0.05 + 0.9 * uniform() else fs[j] = (j - 0.5) / k end
+      if opts.uneven then
+        fs[j] = 0.05 + 0.9 * uniform()
+      elseif opts.bare then
+        fs[j] = opts.bare + (1 - 2 * opts.bare) * (j - 1) / (k - 1)
+      else
+        fs[j] = (j - 0.5) / k
+      end
     end
     table.sort(fs)
     for _, f in ipairs(fs) do

@@ -371,8 +371,8 @@ end
 -- both ends (turns by at most 100 degrees from the last step and into the first: an open
 -- run's ends point away from each other), as ambiguous. Ambiguous decisions are reported
 -- (rep.closed_ambiguous, a warning). Lines and arcs that cover the section
--- and meet across the gap (sharp.closing_pieces) close it in any case, clearly. closed =
--- true or false is taken as given.
+-- and meet across the gap without a detour (sharp.closing_pieces) close it, clearly.
+-- closed = true or false is taken as given.
 function steps.ends(P, ctx)
   local c = ctx.settings.closed
   if c == true or c == false then return c and "closed" or "open" end

@@ -63,18 +63,6 @@ local function noise_of_pieces(P, sigma, closed)
   return s
 end
 
--- Two lines whose models do not meet between them (a free piece of no samples joins them)
--- are one side split where a sample lies past the tolerance, or a side too short to hold a
--- sample of its own: when their directions agree within MIN_TURN the free piece, a short
--- Hermite step, is their join. Elsewhere such a gap means a model took samples of its
--- neighbour (a line on the first samples of an arc; the smooth path does better).
-local function continues(pieces, i)
-  local a, b = pieces[(i - 2) % #pieces + 1], pieces[i % #pieces + 1]
-  if a.kind ~= "line" or b.kind ~= "line" then return false end
-  local c = a.t_end[1] * b.t_start[1] + a.t_end[2] * b.t_start[2]
-  return c >= math.cos(math.rad(MIN_TURN))
-end
-
 local function weak_corner(p)
   return p.turn < MIN_TURN or p.evidence < (p.turn >= STEEP and EVIDENCE_STEEP or EVIDENCE)
 end
@@ -90,7 +78,9 @@ local function screen(P, pieces, s, sigma)
   for i, p in ipairs(pieces) do
     local q = pieces[(i - 2) % #pieces + 1]
     if p.kind ~= "free" then held = held + p.count end
-    if p.kind == "free" and p.count == 0 and not continues(pieces, i) then return nil, "bridge" end
+    if p.kind == "free" and p.count == 0 and not sharp.continues(pieces, i) then
+      return nil, "bridge"
+    end
     if p.join == "corner" then
       if weak_corner(p) then weak[#weak + 1] = i else strong = strong + 1 end
     end

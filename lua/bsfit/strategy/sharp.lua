@@ -175,35 +175,87 @@ function M.has_features(pieces, m)
   return held >= 0.5 * m
 end
 
+-- Is the free piece pieces[i] of no samples (a bridge: the models of its neighbours do not
+-- meet between them) the join of two lines that continue each other, their directions
+-- within CONTINUES_TURN degrees (what noisy_pieces asks of a corner at least)? Such lines
+-- are one side split where a sample lies past the tolerance, or a side too short to hold a
+-- sample of its own, and the free piece, a short Hermite step, joins them. Elsewhere a
+-- bridge means a model took samples of its neighbour (a line on the first samples of an arc).
+local CONTINUES_TURN = 15
+function M.continues(pieces, i)
+  local a, b = pieces[(i - 2) % #pieces + 1], pieces[i % #pieces + 1]
+  if a == b or a.kind ~= "line" or b.kind ~= "line" then return false end
+  local c = a.t_end[1] * b.t_start[1] + a.t_end[2] * b.t_start[2]
+  return c >= math.cos(math.rad(CONTINUES_TURN))
+end
+
+-- how far along piece p from x to y (points on or next to its model): an arc's radius
+-- times the angle it turns from x to y in its own direction, else the chord
+local function along(p, x, y)
+  if p.kind ~= "arc" then return dist(x, y) end
+  local ax, ay = x[1] - p.centre[1], x[2] - p.centre[2]
+  local bx, by = y[1] - p.centre[1], y[2] - p.centre[2]
+  local a = math.atan(ax * by - ay * bx, ax * bx + ay * by)
+  if a * p.sweep < 0 then a = a + (p.sweep > 0 and 2 or -2) * math.pi end
+  return p.radius * math.abs(a)
+end
+
+-- The length of the stretch the pieces of a closed segmentation add between the last
+-- sample and the first: along the piece that holds the last sample to its end, across any
+-- bridges, along the piece that holds the first from its start (or, when one piece holds
+-- both, along it from one to the other).
+local function closing_length(P, pieces)
+  local m, n = #P, #pieces
+  local a, b = { P:get(m) }, { P:get(1) }
+  local ia, ib
+  for i, p in ipairs(pieces) do
+    local last = p.first + p.count - 1
+    if p.count > 0 and p.first <= m and last >= m and p.first ~= 1 then ia = i end
+    if p.count > 0 and (p.first == 1 or last > m) and (not ib or p.first == 1) then ib = i end
+  end
+  if not ia and ib and pieces[ib].first == 1 and pieces[ib].count >= m then ia = ib end
+  if not ia or not ib then return math.huge end
+  if ia == ib then return along(pieces[ia], a, b) end
+  local len, i = along(pieces[ia], a, pieces[ia]["end"]), ia % n + 1
+  while i ~= ib do
+    len, i = len + dist(pieces[i].start, pieces[i]["end"]), i % n + 1
+  end
+  return len + along(pieces[ib], pieces[ib].start, b)
+end
+
 -- The pieces of a section segmented as closed, when lines and arcs hold it and meet across
--- the gap between its last and first samples (gap: their distance) without a detour: exact
--- lines and arcs (returns the pieces and true), else lines and arcs within the noise they
--- show themselves (bs.geom.segment_sigma) that hold 90% of the samples, meet everywhere and
--- close at a corner or a tangent no farther from the two samples than 1.5 gaps together
--- (the end sides of an open run of an outline may meet, but far out), the gap no longer than
--- three times the longest other step (an open run's ends lie across its shape). nil otherwise.
+-- the gap between its last and first samples (gap: their distance) without a detour: the
+-- stretch they add there (closing_length) at most CLOSING_DETOUR gaps (the end sides of an
+-- open run of an outline may meet, but far out; an exact arc of a third of a circle reads
+-- as a whole circle), the gap no longer than three times the longest other step (an open
+-- run's ends lie across its shape). Exact lines and arcs: returns the pieces and true. Else
+-- lines and arcs within the noise they show themselves (bs.geom.segment_sigma) that hold
+-- 90% of the samples, meet everywhere (a bridge only between lines that continue each
+-- other: a side split where a sample lies past the tolerance) and do not close with a
+-- free run. nil otherwise.
+local CLOSING_DETOUR = 2
 function M.closing_pieces(P, gap)
   local m = #P
   local longest = 0
   for i = 1, m - 1 do longest = math.max(longest, dist({ P:get(i) }, { P:get(i + 1) })) end
+  if gap > 3 * longest then return nil end
   local pieces = bs.geom.segment(P, { closed = true })
   local exact = pieces and M.has_features(pieces, m)
   if not exact then
     local s = bs.geom.segment_sigma(P, { closed = true })
-    if not (s and s > 0) or gap > 3 * longest then return nil end
+    if not (s and s > 0) then return nil end
     pieces = bs.geom.segment(P, { closed = true, sigma = s })
     local held = 0
     for _, p in ipairs(pieces or {}) do if p.kind ~= "free" then held = held + p.count end end
     if held < 0.9 * m then return nil end
   end
-  for _, p in ipairs(pieces) do
-    if p.kind == "free" and p.count == 0 then return nil end
-    -- the piece that holds the first sample starts in the gap: its start is the join
-    if p.first == 1 and not exact then
-      local a, b = { P:get(m) }, { P:get(1) }
-      if p.kind == "free" or dist(p.start, a) + dist(p.start, b) > 1.5 * gap then return nil end
+  for i, p in ipairs(pieces) do
+    if p.kind == "free" and p.count == 0 and (exact or not M.continues(pieces, i)) then
+      return nil
     end
+    if p.first == 1 and p.kind == "free" and not exact then return nil end
   end
+  if closing_length(P, pieces) > CLOSING_DETOUR * gap then return nil end
   return pieces, exact
 end
 
