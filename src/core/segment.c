@@ -1115,9 +1115,9 @@ bsfit_err bsfit_segment(const double *pts, size_t m, int dim, const bsfit_segmen
   memset(&mom, 0, sizeof mom);
   s.min_len[LINE] = o.min_line ? o.min_line : 3;
   s.min_len[ARC] = o.min_arc ? o.min_arc : 4;
+  s.size = bsfit__segment_size(pts, m);
   s.tol = fmax((o.tol_sigma > 0 ? o.tol_sigma : 4.0) * o.sigma,
-               fmax((o.exact > 0 ? o.exact : 1e-10) * bsfit__segment_size(pts, m),
-                    rounding_floor(pts, m)));
+               fmax((o.exact > 0 ? o.exact : 1e-10) * s.size, rounding_floor(pts, m)));
   s.unit = s.tol / (o.tol_sigma > 0 ? o.tol_sigma : 4.0);
   s.noisy = o.sigma > 0 && s.tol <= (o.tol_sigma > 0 ? o.tol_sigma : 4.0) * o.sigma;
   s.gaps = bsfit__alloc(a, bsfit__mulsize(2 * m + 1, sizeof(size_t)));

@@ -156,9 +156,13 @@ static double pcubic_rss(const seg_section *s, size_t first, size_t n) {
 ** sampled), the window reaches twice that gap: two runs shorter than the gap between
 ** them are each a position and a direction to one cubic, which then bends through the
 ** gap as it likes (a T of 300 uneven noisy samples per side, 5% of each side bare at its
-** ends: evidence 2 to 9 at right angles, softened into bulging bends). */
+** ends: evidence 2 to 9 at right angles, softened into bulging bends). A corner is
+** local: the window reaches at most a tenth of the section's size (at noise 1e-2 of the
+** size 32 sigma spans a third of it, and the tip of an ellipse that a line cut off read
+** as a corner against one cubic over half the ellipse). */
 #define REACH_SIGMA 32.0
 #define REACH_GAP 2.0
+#define REACH_SIZE 0.1
 #define REACH_MAX 512
 
 /* how many samples of p, from its last (end) or first, the window takes: EVIDENCE_REACH,
@@ -235,7 +239,8 @@ static double bend_rss(const seg_section *s, const bsfit_piece *A, const seg_mod
 double bsfit__join_evidence(const seg_section *s, const bsfit_piece *A, const seg_model *ma,
                             const bsfit_piece *B, const seg_model *mb, double sigma) {
   const double *qa = sample(s, A->first + A->count - 1), *qb = sample(s, B->first);
-  double reach = fmax(REACH_SIGMA * sigma, REACH_GAP * hypot(qb[0] - qa[0], qb[1] - qa[1]));
+  double reach = fmin(fmax(REACH_SIGMA * sigma, REACH_GAP * hypot(qb[0] - qa[0], qb[1] - qa[1])),
+                      REACH_SIZE * s->size);
   size_t na = arc_reach(s, A, ma, dense_reach(s, A, 1, reach), 1);
   size_t nb = arc_reach(s, B, mb, dense_reach(s, B, 0, reach), 0), k,
          first, n;

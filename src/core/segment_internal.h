@@ -22,6 +22,7 @@ typedef struct seg_section {
   size_t m;
   int closed;
   double tol;  /* a sample fits a model within tol */
+  double size; /* the diagonal of the samples' bounding box */
   double unit; /* sigma: tol / tol_sigma (evidence is counted in unit^2) */
   int noisy;   /* tol is set by sigma, not by the exact floor */
   size_t min_len[2];

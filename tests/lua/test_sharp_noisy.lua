@@ -221,6 +221,27 @@ T.test("smooth shapes: no corner, no loop (24 to 200 points, noise 0 to 1e-2, ev
   T.eq(#false_corners, 0, "smooth sections with a corner")
 end)
 
+-- A corner's evidence window is local: at most a tenth of the section's size
+-- (segment_evidence.c). At noise 1e-2 of the size the dense window of 32 sigma spans a
+-- third of it: an ellipse of 40 samples (draw 1) read a corner where an arc met a line
+-- across its tip, one cubic over half the ellipse being the smooth alternative.
+T.test("ellipses at noise 1e-2, 24 to 80 points, eight draws: no corner", function()
+  local n = 0
+  for draw = 1, 8 do
+    for _, m in ipairs { 24, 40, 60, 80 } do
+      for _, uneven in ipairs { false, true } do
+        local P = synth.noisy(synth.sample_smooth(synth.smooth.ellipse, m, uneven), 2.5e-2, 1000 * draw + m + 4)
+        local _, rep = auto.run(P)
+        local joins = 0
+        for _, p in ipairs(rep.pieces or {}) do if p.join == "corner" then joins = joins + 1 end end
+        T.eq(#rep.corners + joins, 0, ("ellipse %d points%s draw %d: corners"):format(m, uneven and " uneven" or "", draw))
+        n = n + 1
+      end
+    end
+  end
+  T.eq(n, 64, "sections")
+end)
+
 T.test("pieces that cannot make one curve keep the smooth path (a noisy cam raised in bs.curve.join)", function()
   -- 80 samples of the cam at noise 1e-2: segmented into one arc gone all the way round and a
   -- line of no length between its ends
