@@ -1142,7 +1142,7 @@ bsfit_err bsfit_segment(const double *pts, size_t m, int dim, const bsfit_segmen
   } else {
     /* below 1e-6 of the size the moments' rounding is no longer far below sigma^2 */
     s.penalty = o.param_cost > 0 ? o.param_cost : RSS_PENALTY;
-    if (s.noisy && isfinite(s.penalty) && o.sigma >= 1e-6 * bsfit__segment_size(pts, m)) {
+    if (s.noisy && isfinite(s.penalty) && o.sigma >= 1e-6 * s.size) {
       if (bsfit__moments_init(&mom, pts, m, a) != BSFIT_OK) {
         e = bsfit__fail(st, BSFIT_ENOMEM, "out of memory for the segmentation of %zu points", m);
         goto done;

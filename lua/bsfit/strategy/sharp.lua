@@ -189,13 +189,17 @@ function M.continues(pieces, i)
   return c >= math.cos(math.rad(CONTINUES_TURN))
 end
 
+-- the signed angle from a to b around c
+local function angle(c, a, b)
+  local ax, ay, bx, by = a[1] - c[1], a[2] - c[2], b[1] - c[1], b[2] - c[2]
+  return math.atan(ax * by - ay * bx, ax * bx + ay * by)
+end
+
 -- how far along piece p from x to y (points on or next to its model): an arc's radius
 -- times the angle it turns from x to y in its own direction, else the chord
 local function along(p, x, y)
   if p.kind ~= "arc" then return dist(x, y) end
-  local ax, ay = x[1] - p.centre[1], x[2] - p.centre[2]
-  local bx, by = y[1] - p.centre[1], y[2] - p.centre[2]
-  local a = math.atan(ax * by - ay * bx, ax * bx + ay * by)
+  local a = angle(p.centre, x, y)
   if a * p.sweep < 0 then a = a + (p.sweep > 0 and 2 or -2) * math.pi end
   return p.radius * math.abs(a)
 end
@@ -207,13 +211,12 @@ end
 local function closing_length(P, pieces)
   local m, n = #P, #pieces
   local a, b = { P:get(m) }, { P:get(1) }
-  local ia, ib
+  local ia, ib -- the pieces that hold the last sample and the first (one that starts there)
   for i, p in ipairs(pieces) do
     local last = p.first + p.count - 1
-    if p.count > 0 and p.first <= m and last >= m and p.first ~= 1 then ia = i end
+    if p.count > 0 and last >= m then ia = i end
     if p.count > 0 and (p.first == 1 or last > m) and (not ib or p.first == 1) then ib = i end
   end
-  if not ia and ib and pieces[ib].first == 1 and pieces[ib].count >= m then ia = ib end
   if not ia or not ib then return math.huge end
   if ia == ib then return along(pieces[ia], a, b) end
   local len, i = along(pieces[ia], a, pieces[ia]["end"]), ia % n + 1
@@ -345,12 +348,6 @@ local function foot(p, x)
   local d = math.sqrt(dx * dx + dy * dy)
   if d == 0 then return nil end
   return { c[1] + r * dx / d, c[2] + r * dy / d }, { -s * dy / d, s * dx / d }
-end
-
--- the signed angle from a to b around c
-local function angle(c, a, b)
-  local ax, ay, bx, by = a[1] - c[1], a[2] - c[2], b[1] - c[1], b[2] - c[2]
-  return math.atan(ax * by - ay * bx, ax * bx + ay * by)
 end
 
 -- Softens the corner where pieces[i] starts into a smooth bend: the samples next to it (the
