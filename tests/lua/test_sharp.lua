@@ -317,9 +317,10 @@ end)
 
 -- Lines and arcs that meet across the gap close a section only without a detour (the
 -- stretch they add at most twice the gap) and when the gap is at most three times the
--- longest other step. Before, exact lines and arcs closed a section wherever they met: 82
--- parts of outlines (a U of an E's first three sides, a D's side and a quarter of its arc)
--- came back closed, with no doubt said. A side split in two lines where a sample lies past
+-- longest other step. Before, exact lines and arcs closed a section wherever they met: 51 of
+-- these 361 parts of outlines (82 of 888 with 6 and 20 samples per side and noise 1e-4
+-- too; a U of an E's first three sides, a D's side and a quarter of its arc) came back
+-- closed, with no doubt said. A side split in two lines where a sample lies past
 -- the tolerance (a bridge between lines that continue each other) no longer stops noisy
 -- pieces from closing a section: closed sections sampled unevenly decided open went 5 -> 3
 -- of 364 (each with the doubt said: gaps of 4 to 10 steps).
@@ -330,7 +331,7 @@ T.test("open or closed: parts of outlines far from closing are open, closed outl
     return h
   end
   local parts = 0
-  for c in shapes.sweep_cases { pers = { 5, 6, 10, 20, 40 }, rels = { 0, 1e-4, 1e-3 } } do
+  for c in shapes.sweep_cases { pers = { 5, 10, 40 }, rels = { 0, 1e-3 } } do
     for _, f in ipairs { 0.3, 0.6, 0.85 } do
       local part = {}
       for i = 1, math.floor(f * #c.pts) do part[i] = c.pts[i] end
@@ -342,7 +343,7 @@ T.test("open or closed: parts of outlines far from closing are open, closed outl
       end
     end
   end
-  T.eq(parts, 888, "parts tried")
+  T.eq(parts, 361, "parts tried")
   local n, open = 0, 0
   for c in shapes.sweep_cases { pers = { 3, 4, 5, 6, 10, 20, 40 }, rels = { 0, 1e-4, 1e-3, 3e-3 }, unevens = { true } } do
     local _, rep = auto.run(bs.points.new(c.pts))
