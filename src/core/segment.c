@@ -205,7 +205,7 @@ static bsfit_err maximal_runs(const seg_section *s, int kind, size_t *len) {
       continue;
     }
     n = grow_run(s, kind, i, n, limit, &md, &tried);
-    len[i] = distinct(s, i, n) >= minl ? n : 0;
+    len[i] = distinct(s, kind, i, n) >= minl ? n : 0;
     prev = n;
   }
   return BSFIT_OK;
@@ -314,7 +314,7 @@ static double best_of_kind(const seg_section *s, size_t origin, size_t j, int ki
                            const size_t *len, const cell *prim, const cell *fr, start_heap *h,
                            size_t *start) {
   size_t minl = s->min_len[kind];
-  while (h->next + minl <= j + 1 && distinct(s, (origin + h->next) % s->m, j + 1 - h->next) >= minl) {
+  while (h->next + minl <= j + 1 && distinct(s, kind, (origin + h->next) % s->m, j + 1 - h->next) >= minl) {
     cell c;
     h->key[h->next] = before_start(h->next, prim, fr, &c);
     heap_push(h, h->next++);
@@ -350,7 +350,7 @@ static void best_primitive_weighed(const seg_section *s, size_t origin, size_t j
     if (j + 1 < minl) continue;
     for (a = j + 1 - minl; j - a < s->longest[kind]; a--) {
       size_t n = j - a + 1;
-      if (len[kind][(origin + a) % s->m] >= n && distinct(s, (origin + a) % s->m, n) >= minl) {
+      if (len[kind][(origin + a) % s->m] >= n && distinct(s, kind, (origin + a) % s->m, n) >= minl) {
         cell t;
         double cost = before_start(a, prim, fr, &t) + s->penalty * COST[kind];
         if (cost < c->cost) { /* else no residual (>= 0) can make it the cheapest */

@@ -34,9 +34,19 @@ typedef struct seg_section {
   const bsfit_allocator *a;
 } seg_section;
 
-/* distinct samples (steps longer than tol, plus one) among n from first */
-static inline size_t distinct(const seg_section *s, size_t first, size_t n) {
-  return s->gaps[first + n - 1] - s->gaps[first] + 1;
+/* distinct samples among n from first for a model of `kind`: steps longer than tol, plus
+** one; for a line, where most steps are shorter than tol (a run sampled more densely than
+** the noise), how many tol it spans end to end, plus one (a side of 0.3 in 37 samples at
+** a tolerance of 0.026 has no step longer than it, yet spans 11 of it; a cluster of
+** samples spans none). An arc's chord says nothing of how much of a circle it holds. */
+static inline size_t distinct(const seg_section *s, int kind, size_t first, size_t n) {
+  const double *a = s->pts + 2 * (first % s->m), *b = s->pts + 2 * ((first + n - 1) % s->m);
+  size_t steps = s->gaps[first + n - 1] - s->gaps[first] + 1;
+  double span;
+  if (kind != LINE || 2 * steps >= n) return steps;
+  span = hypot(b[0] - a[0], b[1] - a[1]) / s->tol;
+  if (!(span >= (double)steps)) return steps;
+  return span + 1 < (double)n ? (size_t)span + 1 : n;
 }
 
 /* a model of either kind */
