@@ -510,6 +510,35 @@ static int touching(const seg_section *s, const seg_model *ma, const seg_model *
   }
 }
 
+static double arc_turn(const seg_section *s, const bsfit_piece *p, const seg_model *md);
+
+/* The turn from a to b round an arc's centre, in its direction, in [0, 2 pi). */
+static double turn_between(const seg_model *md, const double *a, const double *b) {
+  double ax = a[0] - md->circle.c[0], ay = a[1] - md->circle.c[1];
+  double bx = b[0] - md->circle.c[0], by = b[1] - md->circle.c[1];
+  double t = md->orient * atan2(ax * by - ay * bx, ax * bx + ay * by);
+  return t < 0 ? t + 2 * PI : t;
+}
+
+/* Does x lie back among p's samples from q (p's sample at its end, `end`, or its start),
+** by more than `slack`? Along a line, by its direction. Round an arc, by the turn back
+** from q when that is within the turn its samples span: the tangent at q tells only near
+** q, and an arc sampled on a third of its circle meets its neighbour two thirds of the way
+** round (a keyhole of 4 uneven samples per side was closed by the far intersection of a
+** side with its circle, 121 times the floor off). */
+static int behind(const seg_section *s, const bsfit_piece *p, const seg_model *md,
+                  const double *q, const double *x, int end, double slack) {
+  double f[2], t[2], span, turn, back;
+  if (md->kind == LINE) {
+    bsfit__model_foot(md, q, f, t);
+    return ((x[0] - q[0]) * t[0] + (x[1] - q[1]) * t[1]) * (end ? 1 : -1) < -slack;
+  }
+  span = fabs(arc_turn(s, p, md));
+  turn = end ? turn_between(md, q, x) : turn_between(md, x, q);
+  back = turn > 0 ? 2 * PI - turn : 0;
+  return (back < span || span >= 2 * PI) && back * md->circle.r > slack;
+}
+
 /* Is x where A (last sample qa) may meet B (first sample qb)? Beyond qa along A, before
 ** qb along B (by `slack` at most), and within reach of both: as far as the pieces' own
 ** spacing, and `past` farther (a tangent join's, below). */
@@ -517,15 +546,12 @@ static int in_gap(const seg_section *s, const bsfit_piece *A, const seg_model *m
                   const bsfit_piece *B, const seg_model *mb, const double *x, double slack,
                   double past) {
   const double *qa = sample(s, A->first + A->count - 1), *qb = sample(s, B->first);
-  double ta[2], tb[2], f[2], chord = hypot(qb[0] - qa[0], qb[1] - qa[1]);
+  double chord = hypot(qb[0] - qa[0], qb[1] - qa[1]);
   double reach_a = 1.5 * max_spacing(s, A) + 1.5 * chord + s->tol + past;
   double reach_b = 1.5 * max_spacing(s, B) + 1.5 * chord + s->tol + past;
-  bsfit__model_foot(ma, qa, f, ta);
-  bsfit__model_foot(mb, qb, f, tb);
   if (hypot(x[0] - qa[0], x[1] - qa[1]) > reach_a || hypot(x[0] - qb[0], x[1] - qb[1]) > reach_b)
     return 0;
-  if ((x[0] - qa[0]) * ta[0] + (x[1] - qa[1]) * ta[1] < -slack) return 0;
-  return (qb[0] - x[0]) * tb[0] + (qb[1] - x[1]) * tb[1] >= -slack;
+  return !behind(s, A, ma, qa, x, 1, slack) && !behind(s, B, mb, qb, x, 0, slack);
 }
 
 /* Where A and B meet: their touching point (a tangent join), or the meeting point of
