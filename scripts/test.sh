@@ -12,8 +12,10 @@ cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DBSFIT_TESTS=ON -DBSFIT_WERROR=O
 cmake --build build -j "$jobs"
 (cd build && ctest --output-on-failure -j "$jobs")
 
-echo "== sanitizer build (build-asan/: AddressSanitizer + UBSan)"
-cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Debug -DBSFIT_SANITIZE=ON -DBSFIT_TESTS=ON -DBSFIT_WERROR=ON -DBSFIT_BENCH=OFF >/dev/null
+# -O1, as the sanitizers' own documentation advises: every check stays, and the suite runs
+# in half the time of -O0 (CI's budget is 15 minutes)
+echo "== sanitizer build (build-asan/: AddressSanitizer + UBSan, -O1)"
+cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Debug -DCMAKE_C_FLAGS_DEBUG="-g -O1" -DBSFIT_SANITIZE=ON -DBSFIT_TESTS=ON -DBSFIT_WERROR=ON -DBSFIT_BENCH=OFF >/dev/null
 cmake --build build-asan -j "$jobs"
 (cd build-asan && ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   ctest --output-on-failure -j "$jobs")

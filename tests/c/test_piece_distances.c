@@ -35,8 +35,8 @@ static double seg_dist(const double *x, const double *a, const double *b) {
 ** from exact lines into c, each side's length its parameter share */
 static void random_polygon(test_rng *r, int nv, double *V, bsfit_curve *c) {
   bsfit_curve parts[16];
-  const bsfit_curve *pp[16];
-  double len[16];
+  const bsfit_curve *pp[16] = {NULL};
+  double len[16] = {0};
   int i;
   for (i = 0; i < nv; i++) {
     double ang = 2 * PI * (i + rng_range(r, 0.1, 0.9)) / nv, rad = rng_range(r, 0.3, 3.0);
