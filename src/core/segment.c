@@ -1105,10 +1105,12 @@ static size_t finish_pieces(const seg_section *s, bsfit_piece *p, seg_model *md,
 
 static void count_gaps(seg_section *s) {
   size_t i;
-  s->gaps[0] = 0;
+  s->gaps[0] = s->moves[0] = 0;
   for (i = 0; i < 2 * s->m; i++) {
     const double *p = sample(s, i), *q = sample(s, i + 1);
-    s->gaps[i + 1] = s->gaps[i] + (hypot(q[0] - p[0], q[1] - p[1]) > s->tol);
+    double d = hypot(q[0] - p[0], q[1] - p[1]);
+    s->gaps[i + 1] = s->gaps[i] + (d > s->tol);
+    s->moves[i + 1] = s->moves[i] + (d > 0);
   }
 }
 
@@ -1147,6 +1149,7 @@ bsfit_err bsfit_segment(const double *pts, size_t m, int dim, const bsfit_segmen
   s.unit = s.tol / (o.tol_sigma > 0 ? o.tol_sigma : 4.0);
   s.noisy = o.sigma > 0 && s.tol <= (o.tol_sigma > 0 ? o.tol_sigma : 4.0) * o.sigma;
   s.gaps = bsfit__alloc(a, bsfit__mulsize(2 * m + 1, sizeof(size_t)));
+  s.moves = bsfit__alloc(a, bsfit__mulsize(2 * m + 1, sizeof(size_t)));
   len[0] = bsfit__alloc(a, bsfit__mulsize(m, sizeof(size_t)));
   len[1] = bsfit__alloc(a, bsfit__mulsize(m, sizeof(size_t)));
   prim = bsfit__alloc(a, bsfit__mulsize(m, sizeof(cell)));
@@ -1156,7 +1159,7 @@ bsfit_err bsfit_segment(const double *pts, size_t m, int dim, const bsfit_segmen
   heap_at = bsfit__alloc(a, bsfit__mulsize(2 * m, sizeof(size_t)));
   heap_key = bsfit__alloc(a, bsfit__mulsize(2 * m, sizeof(double)));
   heap_below = bsfit__alloc(a, bsfit__mulsize(2 * m, sizeof(size_t)));
-  if (!s.gaps || !len[0] || !len[1] || !prim || !fr || !buf || !md || !heap_at || !heap_key ||
+  if (!s.gaps || !s.moves || !len[0] || !len[1] || !prim || !fr || !buf || !md || !heap_at || !heap_key ||
       !heap_below) {
     e = bsfit__fail(st, BSFIT_ENOMEM, "out of memory for the segmentation of %zu points", m);
     goto done;
@@ -1191,6 +1194,7 @@ bsfit_err bsfit_segment(const double *pts, size_t m, int dim, const bsfit_segmen
 done:
   bsfit__moments_free(&mom, a);
   bsfit__free(a, s.gaps, s.gaps ? (2 * m + 1) * sizeof(size_t): 0);
+  bsfit__free(a, s.moves, s.moves ? (2 * m + 1) * sizeof(size_t): 0);
   bsfit__free(a, len[0], len[0] ? m * sizeof(size_t): 0);
   bsfit__free(a, len[1], len[1] ? m * sizeof(size_t): 0);
   bsfit__free(a, prim, prim ? m * sizeof(cell) : 0);

@@ -28,6 +28,7 @@ typedef struct seg_section {
   size_t min_len[2];
   size_t *gaps; /* gaps[i]: how many of the steps j -> j+1, j < i (unwrapped, i <= 2m),
                    are longer than tol: a model needs that many distinct samples */
+  size_t *moves; /* moves[i]: how many of them are not zero (repeated samples are one) */
   const bsfit__moments *mom; /* noisy sections: pieces cost their residual too (NULL: not) */
   size_t longest[2];         /* the longest run of each kind */
   double penalty;            /* sigma^2 per parameter, with mom */
@@ -35,18 +36,21 @@ typedef struct seg_section {
 } seg_section;
 
 /* distinct samples among n from first for a model of `kind`: steps longer than tol, plus
-** one; for a line, where most steps are shorter than tol (a run sampled more densely than
-** the noise), how many tol it spans end to end, plus one (a side of 0.3 in 37 samples at
-** a tolerance of 0.026 has no step longer than it, yet spans 11 of it; a cluster of
-** samples spans none). An arc's chord says nothing of how much of a circle it holds. */
+** one; for a line on a noisy section, where most steps are shorter than tol (a run sampled
+** more densely than the noise), how many tol it spans end to end, plus one, but no more
+** than its samples that are not repeats (a side of 0.3 in 37 samples at a tolerance of
+** 0.026 has no step longer than it, yet spans 11 of it; a cluster of samples spans none;
+** two points given three times each are two). An arc's chord says nothing of how much of
+** a circle it holds. */
 static inline size_t distinct(const seg_section *s, int kind, size_t first, size_t n) {
   const double *a = s->pts + 2 * (first % s->m), *b = s->pts + 2 * ((first + n - 1) % s->m);
   size_t steps = s->gaps[first + n - 1] - s->gaps[first] + 1;
+  size_t moved = s->moves[first + n - 1] - s->moves[first] + 1;
   double span;
-  if (kind != LINE || 2 * steps >= n) return steps;
+  if (kind != LINE || !s->noisy || 2 * steps >= n) return steps;
   span = hypot(b[0] - a[0], b[1] - a[1]) / s->tol;
   if (!(span >= (double)steps)) return steps;
-  return span + 1 < (double)n ? (size_t)span + 1 : n;
+  return span + 1 < (double)moved ? (size_t)span + 1 : moved;
 }
 
 /* a model of either kind */

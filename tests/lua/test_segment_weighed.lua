@@ -90,3 +90,35 @@ T.test("short sides sampled more densely than the noise are lines", function()
   end
   T.ok(tried >= 8, ("%d rectangles with short sides denser than the noise"):format(tried))
 end)
+
+-- Samples given several times are one sample each: a noisy circle's samples repeated
+-- three times hold no line of two positions (six samples spanning many tolerances: counted
+-- by their span alone they made such lines). Exact data never count by span (test_strategy:
+-- a circle's samples three times each). Left: a circle of 60 samples x 3 at noise 1e-3
+-- still has a line of two positions, on the code before the span count too (a later step
+-- than the cover makes it).
+T.test("repeated noisy samples hold no line of two positions", function()
+  local _, gauss = require("synth").rng(77)
+  for _, k in ipairs { 12, 20, 30, 40 } do
+    for _, rel in ipairs { 1e-4, 3e-4 } do
+      local rows = {}
+      for i = 0, k - 1 do
+        local a = 2 * math.pi * i / k
+        local x, y = math.cos(a) + rel * gauss(), math.sin(a) + rel * gauss()
+        for _ = 1, 3 do rows[#rows + 1] = { x, y } end
+      end
+      local pieces = bs.geom.segment(bs.points.new(rows), { closed = true, sigma = rel })
+      for i, p in ipairs(pieces) do
+        if p.kind == "line" then
+          local positions = 0 -- its samples that differ from the one before
+          for j = 1, p.count - 1 do
+            local a, b = rows[(p.first + j - 2) % #rows + 1], rows[(p.first + j - 1) % #rows + 1]
+            if a[1] ~= b[1] or a[2] ~= b[2] then positions = positions + 1 end
+          end
+          T.ok(positions + 1 >= 3, ("circle of %d samples x 3, noise %g: line %d of %d samples holds %d positions"):format(
+            k, rel, i, p.count, positions + 1))
+        end
+      end
+    end
+  end
+end)
