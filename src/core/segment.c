@@ -510,8 +510,6 @@ static int touching(const seg_section *s, const seg_model *ma, const seg_model *
   }
 }
 
-static double arc_turn(const seg_section *s, const bsfit_piece *p, const seg_model *md);
-
 /* The turn from a to b round an arc's centre, in its direction, in [0, 2 pi). */
 static double turn_between(const seg_model *md, const double *a, const double *b) {
   double ax = a[0] - md->circle.c[0], ay = a[1] - md->circle.c[1];
@@ -522,10 +520,10 @@ static double turn_between(const seg_model *md, const double *a, const double *b
 
 /* Does x lie back among p's samples from q (p's sample at its end, `end`, or its start),
 ** by more than `slack`? Along a line, by its direction. Round an arc, by the turn back
-** from q when that is within the turn its samples span: the tangent at q tells only near
-** q, and an arc sampled on a third of its circle meets its neighbour two thirds of the way
-** round (a keyhole of 4 uneven samples per side was closed by the far intersection of a
-** side with its circle, 121 times the floor off). */
+** from q when that is within the turn from its first sample to its last: the tangent at q
+** tells only near q, and an arc sampled on a third of its circle meets its neighbour two
+** thirds of the way round (a keyhole of 4 uneven samples per side was closed by the far
+** intersection of a side with its circle, 121 times the floor off). */
 static int behind(const seg_section *s, const bsfit_piece *p, const seg_model *md,
                   const double *q, const double *x, int end, double slack) {
   double f[2], t[2], span, turn, back;
@@ -533,10 +531,10 @@ static int behind(const seg_section *s, const bsfit_piece *p, const seg_model *m
     bsfit__model_foot(md, q, f, t);
     return ((x[0] - q[0]) * t[0] + (x[1] - q[1]) * t[1]) * (end ? 1 : -1) < -slack;
   }
-  span = fabs(arc_turn(s, p, md));
+  span = turn_between(md, sample(s, p->first), sample(s, p->first + p->count - 1));
   turn = end ? turn_between(md, q, x) : turn_between(md, x, q);
   back = turn > 0 ? 2 * PI - turn : 0;
-  return (back < span || span >= 2 * PI) && back * md->circle.r > slack;
+  return back < span && back * md->circle.r > slack;
 }
 
 /* Is x where A (last sample qa) may meet B (first sample qb)? Beyond qa along A, before
