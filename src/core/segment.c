@@ -935,7 +935,9 @@ static size_t cover(seg_section *s, size_t *const len[2], cell *prim, cell *fr, 
 
 /* Under noise a line may take the first samples of the fillet after it (they lie within
 ** the tolerance of both): each boundary sample goes to the neighbour whose model it
-** fits better, and both are refitted; a few rounds. */
+** fits better, and both are refitted; a few rounds. A piece keeps the distinct samples
+** its model needs (a line of a circle's samples given three times each gave up a position
+** and held two). */
 static void rebalance(const seg_section *s, bsfit_piece *p, seg_model *md, size_t np) {
   size_t i, round;
   for (round = 0; round < 3; round++) {
@@ -946,10 +948,12 @@ static void rebalance(const seg_section *s, bsfit_piece *p, seg_model *md, size_
       if ((!s->closed && ib == 0) || np < 2 || A->kind == FREE || B->kind == FREE) continue;
       if (B->first != (A->first + A->count) % s->m) continue; /* shared sample: a corner */
       while (A->count > s->min_len[A->kind] + 1 &&
+             distinct(s, A->kind, A->first, A->count - 1) >= s->min_len[A->kind] &&
              model_dist(&md[ib], sample(s, A->first + A->count - 1)) <
                  model_dist(&md[i], sample(s, A->first + A->count - 1)))
         A->count--, B->first = (B->first + s->m - 1) % s->m, B->count++, moved = 1;
       while (B->count > s->min_len[B->kind] + 1 &&
+             distinct(s, B->kind, B->first + 1, B->count - 1) >= s->min_len[B->kind] &&
              model_dist(&md[i], sample(s, B->first)) < model_dist(&md[ib], sample(s, B->first)))
         B->count--, B->first = (B->first + 1) % s->m, A->count++, moved = 1;
       if (moved) {

@@ -13,7 +13,8 @@
 -- 32 sigma of it (and twice the gap between its samples, and at most a tenth of the size):
 -- 107 went through their pieces, 142 were within the floor (124 before the gap's reach);
 -- since a line run sampled more densely than the noise counts the tolerances it spans
--- (the serifs' sides were free runs), 128 and 148.
+-- (the serifs' sides were free runs), 128 and 148; 127 and 147 since a piece keeps the
+-- distinct samples its model needs when its boundary moves.
 local T = require "tap"
 local bs = require "bsfit"
 local shapes = require "shapes_sharp"
