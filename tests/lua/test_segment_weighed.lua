@@ -2,7 +2,8 @@
 -- residual in sigma^2 and param_cost sigma^2 per parameter; math.huge: parameters only).
 -- What the weighing gains on the auto strategy is measured by the sweep of
 -- test_sharp_noisy.lua (its floor fails with parameters only: 193 instead of 203 sections
--- within the Hausdorff bound); here, what it does to the cover itself.
+-- within the Hausdorff bound); here, what it does to the cover itself, and how many
+-- distinct samples a run of a noisy cover holds (runs denser than the noise, repeats).
 local T = require "tap"
 local bs = require "bsfit"
 local shapes = require "shapes_sharp"

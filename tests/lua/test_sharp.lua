@@ -223,11 +223,6 @@ T.test("self-intersection: a figure eight crosses, a circle and a square do not"
   T.eq((bs.geom.self_intersections(bs.curve.arc { centre = { 0, 0 }, radius = 1, sweep = 2 * math.pi })), 0)
 end)
 
--- The noisy sweep: every outline at 6 and 10 samples per side, noise 1e-4 and 1e-3 of
--- the size, two seeds. Sections whose pieces the auto strategy trusts (rep.pieces) are
--- held to the issue's numbers; every section to no self-intersection; the share taken
--- through the pieces is reported and must not fall (test_sharp_noisy.lua: the sparse
--- and uneven sweep, every section measured).
 -- Samples of outline o, `per` on each primitive: evenly along lines, and along arcs only
 -- within the fractions [w, w + 0.35] of their sweep (an arc seen on a third of it); noise
 -- sigma (absolute) with `seed`.
@@ -274,6 +269,11 @@ T.test("an arc sampled on a third of its circle meets its neighbours at the true
   end
 end)
 
+-- The noisy sweep: every outline at 6 and 10 samples per side, noise 1e-4 and 1e-3 of
+-- the size, two seeds. Sections whose pieces the auto strategy trusts (rep.pieces) are
+-- held to the issue's numbers; every section to no self-intersection; the share taken
+-- through the pieces is reported and must not fall (test_sharp_noisy.lua: the sparse
+-- and uneven sweep, every section measured).
 T.test("noisy sections of lines and arcs: Hausdorff < 3 sigma + 1e-3, corners within a sample, radii 2%", function()
   local sharp_n, total = 0, 0
   for _, name in ipairs(NAMES) do
