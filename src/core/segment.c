@@ -526,11 +526,9 @@ static double turn_between(const seg_model *md, const double *a, const double *b
 ** intersection of a side with its circle, 121 times the floor off). */
 static int behind(const seg_section *s, const bsfit_piece *p, const seg_model *md,
                   const double *q, const double *x, int end, double slack) {
-  double f[2], t[2], span, turn, back;
-  if (md->kind == LINE) {
-    bsfit__model_foot(md, q, f, t);
-    return ((x[0] - q[0]) * t[0] + (x[1] - q[1]) * t[1]) * (end ? 1 : -1) < -slack;
-  }
+  double span, turn, back;
+  if (md->kind == LINE) /* its direction is the samples' */
+    return ((x[0] - q[0]) * md->line.d[0] + (x[1] - q[1]) * md->line.d[1]) * (end ? 1 : -1) < -slack;
   span = turn_between(md, sample(s, p->first), sample(s, p->first + p->count - 1));
   turn = end ? turn_between(md, q, x) : turn_between(md, x, q);
   back = turn > 0 ? 2 * PI - turn : 0;
@@ -1107,12 +1105,13 @@ static size_t finish_pieces(const seg_section *s, bsfit_piece *p, seg_model *md,
 
 static void count_gaps(seg_section *s) {
   size_t i;
-  s->gaps[0] = s->moves[0] = 0;
+  s->gaps[0] = 0;
+  if (s->moves) s->moves[0] = 0;
   for (i = 0; i < 2 * s->m; i++) {
     const double *p = sample(s, i), *q = sample(s, i + 1);
     double d = hypot(q[0] - p[0], q[1] - p[1]);
     s->gaps[i + 1] = s->gaps[i] + (d > s->tol);
-    s->moves[i + 1] = s->moves[i] + (d > 0);
+    if (s->moves) s->moves[i + 1] = s->moves[i] + (d > 0);
   }
 }
 
@@ -1151,7 +1150,7 @@ bsfit_err bsfit_segment(const double *pts, size_t m, int dim, const bsfit_segmen
   s.unit = s.tol / (o.tol_sigma > 0 ? o.tol_sigma : 4.0);
   s.noisy = o.sigma > 0 && s.tol <= (o.tol_sigma > 0 ? o.tol_sigma : 4.0) * o.sigma;
   s.gaps = bsfit__alloc(a, bsfit__mulsize(2 * m + 1, sizeof(size_t)));
-  s.moves = bsfit__alloc(a, bsfit__mulsize(2 * m + 1, sizeof(size_t)));
+  s.moves = s.noisy ? bsfit__alloc(a, bsfit__mulsize(2 * m + 1, sizeof(size_t))) : NULL;
   len[0] = bsfit__alloc(a, bsfit__mulsize(m, sizeof(size_t)));
   len[1] = bsfit__alloc(a, bsfit__mulsize(m, sizeof(size_t)));
   prim = bsfit__alloc(a, bsfit__mulsize(m, sizeof(cell)));
@@ -1161,7 +1160,7 @@ bsfit_err bsfit_segment(const double *pts, size_t m, int dim, const bsfit_segmen
   heap_at = bsfit__alloc(a, bsfit__mulsize(2 * m, sizeof(size_t)));
   heap_key = bsfit__alloc(a, bsfit__mulsize(2 * m, sizeof(double)));
   heap_below = bsfit__alloc(a, bsfit__mulsize(2 * m, sizeof(size_t)));
-  if (!s.gaps || !s.moves || !len[0] || !len[1] || !prim || !fr || !buf || !md || !heap_at || !heap_key ||
+  if (!s.gaps || (s.noisy && !s.moves) || !len[0] || !len[1] || !prim || !fr || !buf || !md || !heap_at || !heap_key ||
       !heap_below) {
     e = bsfit__fail(st, BSFIT_ENOMEM, "out of memory for the segmentation of %zu points", m);
     goto done;

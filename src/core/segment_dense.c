@@ -30,6 +30,8 @@ double *bsfit__spread(const double *pts, size_t m, size_t most, const bsfit_allo
   return sub;
 }
 
+static double square(double x) { return x * x; }
+
 /* unwrapped subsample index u of a section of m samples read every k-th (msub of them)
 ** -> unwrapped index of the section */
 static size_t full_index(size_t u, size_t msub, size_t m, size_t k) {
@@ -46,11 +48,11 @@ static size_t boundary(const seg_section *s, const bsfit_piece *A, const bsfit_p
   double cost = 0, best;
   if (ea >= sb) return sb;
   if (A->kind == FREE || B->kind == FREE) return (ea + sb + 1) / 2;
-  for (j = lo; j < hi; j++) cost += pow(bsfit__piece_dist(A, sample(s, j)), 2);
+  for (j = lo; j < hi; j++) cost += square(bsfit__piece_dist(A, sample(s, j)));
   best = cost;
   for (j = hi; j-- > lo;) { /* sample j moves from A to B: B starts at j */
     const double *q = sample(s, j);
-    cost += pow(bsfit__piece_dist(B, q), 2) - pow(bsfit__piece_dist(A, q), 2);
+    cost += square(bsfit__piece_dist(B, q)) - square(bsfit__piece_dist(A, q));
     if (cost < best) best = cost, at = j;
   }
   return at;

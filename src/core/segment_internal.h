@@ -28,7 +28,8 @@ typedef struct seg_section {
   size_t min_len[2];
   size_t *gaps; /* gaps[i]: how many of the steps j -> j+1, j < i (unwrapped, i <= 2m),
                    are longer than tol: a model needs that many distinct samples */
-  size_t *moves; /* moves[i]: how many of them are not zero (repeated samples are one) */
+  size_t *moves; /* noisy sections: moves[i], how many of them are not zero (repeated
+                    samples are one); NULL on exact ones, whose lines count steps only */
   const bsfit__moments *mom; /* noisy sections: pieces cost their residual too (NULL: not) */
   size_t longest[2];         /* the longest run of each kind */
   double penalty;            /* sigma^2 per parameter, with mom */
@@ -43,13 +44,14 @@ typedef struct seg_section {
 ** two points given three times each are two). An arc's chord says nothing of how much of
 ** a circle it holds. */
 static inline size_t distinct(const seg_section *s, int kind, size_t first, size_t n) {
-  const double *a = s->pts + 2 * (first % s->m), *b = s->pts + 2 * ((first + n - 1) % s->m);
-  size_t steps = s->gaps[first + n - 1] - s->gaps[first] + 1;
-  size_t moved = s->moves[first + n - 1] - s->moves[first] + 1;
+  size_t steps = s->gaps[first + n - 1] - s->gaps[first] + 1, moved;
+  const double *a, *b;
   double span;
-  if (kind != LINE || !s->noisy || 2 * steps >= n) return steps;
+  if (kind != LINE || !s->moves || 2 * steps >= n) return steps;
+  a = s->pts + 2 * (first % s->m), b = s->pts + 2 * ((first + n - 1) % s->m);
   span = hypot(b[0] - a[0], b[1] - a[1]) / s->tol;
   if (!(span >= (double)steps)) return steps;
+  moved = s->moves[first + n - 1] - s->moves[first] + 1;
   return span + 1 < (double)moved ? (size_t)span + 1 : moved;
 }
 

@@ -362,9 +362,9 @@ function M.corner_places(o, h, sigma)
   return at
 end
 
--- the largest step between consecutive samples (closing step included)
-function M.spacing(pts)
-  local h = M.dist(pts[#pts], pts[1])
+-- the largest step between consecutive samples (the closing step included, unless `open`)
+function M.spacing(pts, open)
+  local h = open and 0 or M.dist(pts[#pts], pts[1])
   for i = 2, #pts do h = math.max(h, M.dist(pts[i], pts[i - 1])) end
   return h
 end

@@ -33,6 +33,32 @@ M.smooth = {
   end,
 }
 
+-- A cam, size ~2.5: a smooth shape whose curvature changes all along it (tangent arcs
+-- follow it within the noise, but farther from it than one smooth curve).
+function M.cam(t)
+  local r = 1 + 0.25 * math.cos(t) + 0.08 * math.cos(2 * t)
+  return r * math.cos(t), r * math.sin(t)
+end
+
+-- The smooth shapes and the cam, and their names sorted (a sweep's draws must not depend
+-- on the order pairs() gives):
+--   local shapes, names = synth.smooth_shapes()
+function M.smooth_shapes()
+  local shapes, names = { cam = M.cam }, {}
+  for name, f in pairs(M.smooth) do shapes[name] = f end
+  for name in pairs(shapes) do names[#names + 1] = name end
+  table.sort(names)
+  return shapes, names
+end
+
+-- How many corners a result of the auto strategy has, on either path: the smooth path's
+-- (rep.corners) and the pieces' corner joins.
+function M.corners_of(rep)
+  local n = #rep.corners
+  for _, p in ipairs(rep.pieces or {}) do if p.join == "corner" then n = n + 1 end end
+  return n
+end
+
 -- points {x, y} of a smooth shape, m of them, uneven spacing when `uneven`
 function M.sample_smooth(f, m, uneven)
   local pts = {}

@@ -148,14 +148,8 @@ end)
 -- Three remain (an ellipse of 80 or 200 samples at noise 3e-3, 0.0075 of its size of 2,
 -- is within that noise of a four-arc oval: the pieces' residual is below the windows').
 T.test("a smooth noisy shape is not read as tangent lines and arcs", function()
-  local shapes = { cam = function(t)
-    local r = 1 + 0.25 * math.cos(t) + 0.08 * math.cos(2 * t)
-    return r * math.cos(t), r * math.sin(t)
-  end }
-  for name, f in pairs(synth.smooth) do shapes[name] = f end
-  local names, tangent_only, total = {}, {}, 0
-  for name in pairs(shapes) do names[#names + 1] = name end
-  table.sort(names)
+  local shapes, names = synth.smooth_shapes()
+  local tangent_only, total = {}, 0
   for seed = 1, 3 do
     for _, name in ipairs(names) do
       for _, m in ipairs { 40, 80, 200 } do

@@ -58,10 +58,10 @@ end)
 -- A short side sampled more densely than the noise (every step shorter than the tolerance,
 -- 4 sigma) is still a line: it counts the tolerances it spans end to end. Before, such a
 -- run counted as one distinct sample and held no line: the short sides of these
--- rectangles (a serif's sides) came out free runs and their corners were lost.
+-- rectangles (a serif's sides) came out free runs and their corners were lost. In 8 of
+-- these 12 the short side's step is below the tolerance; the other 4 are ordinary sides.
 T.test("short sides sampled more densely than the noise are lines", function()
   local _, gauss = require("synth").rng(4242)
-  local tried = 0
   for _, short in ipairs { 0.12, 0.2, 0.3 } do
     for _, per in ipairs { 30, 60 } do
       for _, rel in ipairs { 1e-3, 3e-3 } do
@@ -74,7 +74,6 @@ T.test("short sides sampled more densely than the noise are lines", function()
             pts[#pts + 1] = { a[1] + t * (b[1] - a[1]) + rel * gauss(), a[2] + t * (b[2] - a[2]) + rel * gauss() }
           end
         end
-        local step = short / per
         local pieces = bs.geom.segment(bs.points.new(pts), { closed = true, sigma = rel })
         local what = ("short side %g, %d per side, noise %g"):format(short, per, rel)
         local lines, corners_found = 0, 0
@@ -85,11 +84,9 @@ T.test("short sides sampled more densely than the noise are lines", function()
         T.eq(#pieces, 4, what .. ": pieces")
         T.eq(lines, 4, what .. ": lines")
         T.eq(corners_found, 4, what .. ": corners")
-        if step < 4 * rel then tried = tried + 1 end
       end
     end
   end
-  T.ok(tried >= 8, ("%d rectangles with short sides denser than the noise"):format(tried))
 end)
 
 -- Samples given several times are one sample each: a noisy circle's samples repeated

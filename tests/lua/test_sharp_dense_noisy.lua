@@ -135,16 +135,16 @@ T.test("an open section of 12000 crowded noisy samples: every sample has a param
   end
 end)
 
--- Noisy smooth shapes, noise up to 1e-2 of their size, four draws: a corner's evidence
--- window is local (at most a tenth of the size; at 1e-2, 32 sigma is a third of it). With
--- runs sampled more densely than the noise let hold lines (tried, not kept), ellipses of
--- 200 and 1500 samples read their tips as lines with corners of evidence 64 to 262 against
--- one cubic over half the ellipse (3 of these 96 sections) until the window was bounded.
+-- Noisy smooth shapes, noise up to 1e-2 of their size, four draws (96 sections): a corner's
+-- evidence window is local (at most a tenth of the size; at 1e-2, 32 sigma is a third of
+-- it). When runs sampled more densely than the noise were first let hold lines and arcs,
+-- ellipses of 200 and 1500 samples read their tips as lines with corners of evidence 64 to
+-- 262 against one cubic over half the ellipse (3 of these sections) until the window was
+-- bounded.
 T.test("noisy smooth shapes at noise to 1e-2: no corner", function()
   local names = {}
   for k in pairs(synth.smooth) do names[#names + 1] = k end
   table.sort(names)
-  local n = 0
   for draw = 1, 4 do
     for _, name in ipairs(names) do
       for _, m in ipairs { 200, 600, 1500 } do
@@ -152,27 +152,15 @@ T.test("noisy smooth shapes at noise to 1e-2: no corner", function()
           local P = synth.noisy(synth.sample_smooth(synth.smooth[name], m, draw % 2 == 0), 2.5 * rel,
                                 1000 * draw + m)
           local _, rep = auto.run(P)
-          local joins = 0
-          for _, p in ipairs(rep.pieces or {}) do if p.join == "corner" then joins = joins + 1 end end
-          T.eq(#rep.corners + joins, 0, ("%s, %d samples, noise %g, draw %d: corners"):format(name, m, rel, draw))
-          n = n + 1
+          T.eq(synth.corners_of(rep), 0, ("%s, %d samples, noise %g, draw %d: corners"):format(name, m, rel, draw))
         end
       end
     end
   end
-  T.ok(n >= 96, ("%d smooth sections"):format(n))
 end)
 
 T.test("dense noisy smooth shapes stay one smooth curve: no pieces, no corner", function()
-  local cam = function(t)
-    local r = 1 + 0.25 * math.cos(t) + 0.08 * math.cos(2 * t)
-    return r * math.cos(t), r * math.sin(t)
-  end
-  local shapes_smooth = { cam = cam }
-  for k, f in pairs(synth.smooth) do shapes_smooth[k] = f end
-  local names = {}
-  for k in pairs(shapes_smooth) do names[#names + 1] = k end
-  table.sort(names)
+  local shapes_smooth, names = synth.smooth_shapes()
   local n, read_as_pieces = 0, 0
   for _, name in ipairs(names) do
     for i, m in ipairs { 600, 1500, 4000 } do
@@ -181,9 +169,7 @@ T.test("dense noisy smooth shapes stay one smooth curve: no pieces, no corner", 
                               100 * i + j)
         local _, rep = auto.run(P)
         local what = ("%s, %d samples, noise %g"):format(name, m, rel)
-        local joins = 0
-        for _, p in ipairs(rep.pieces or {}) do if p.join == "corner" then joins = joins + 1 end end
-        T.eq(#rep.corners + joins, 0, what .. ": corners")
+        T.eq(synth.corners_of(rep), 0, what .. ": corners")
         if rep.pieces then
           print(("# %s: %d tangent lines and arcs"):format(what, #rep.pieces))
           read_as_pieces = read_as_pieces + 1

@@ -239,8 +239,11 @@ end
 local CLOSING_DETOUR = 2
 function M.closing_pieces(P, gap)
   local m = #P
-  local longest = 0
-  for i = 1, m - 1 do longest = math.max(longest, dist({ P:get(i) }, { P:get(i + 1) })) end
+  local longest, px, py = 0, P:get(1) -- 2D: no table per step (it runs on every sample)
+  for i = 2, m do
+    local x, y = P:get(i)
+    longest, px, py = math.max(longest, math.sqrt((x - px) ^ 2 + (y - py) ^ 2)), x, y
+  end
   if gap > 3 * longest then return nil end
   local pieces = bs.geom.segment(P, { closed = true })
   local exact = pieces and M.has_features(pieces, m)
