@@ -180,12 +180,9 @@ static size_t seed_run(const seg_section *s, int kind, size_t i, size_t n, const
   return minl;
 }
 
-/* len[i] = the most samples from i that one model of `kind` explains (0 when fewer than
-** its minimum; a long run may stop short of the most by under an eighth where a refit
-** was not worth trying). Two pointers: the run from i - 1 less its first sample is a run
-** from i, so each start resumes where the previous stopped: a short run refitted
-** (warm-started from the previous model), a long one with the previous model, which
-** explains it. O(m) fits' worth of work. */
+/* the most samples a run from i can hold: the section's, or those left before an open end */
+static size_t run_limit(const seg_section *s, size_t i) { return s->closed ? s->m : s->m - i; }
+
 /* An arc's run from i that stops far short of where the run from i + 1 ends is tried
 ** once on the samples from i to that end, and made that long when one circle explains
 ** them all. The start's model is fitted to its first few samples only; where they bow
@@ -205,7 +202,7 @@ static void extend_arc_runs(const seg_section *s, size_t *len) {
   seg_model md;
   for (i = s->closed ? m : m - 1; i-- > 0;) {
     size_t next = len[(i + 1) % m], want = next + 1;
-    if (next == 0 || want > (s->closed ? m : m - i) || want < 2 * FAR_SHORT ||
+    if (next == 0 || want > run_limit(s, i) || want < 2 * FAR_SHORT ||
         want < len[i] + FAR_SHORT || 4 * (want - len[i]) < want)
       continue;
     if (fit_model(s, ARC, i, want, &md, NULL) <= s->tol && distinct(s, ARC, i, want) >= minl)
@@ -213,12 +210,19 @@ static void extend_arc_runs(const seg_section *s, size_t *len) {
   }
 }
 
+/* len[i] = the most samples from i that one model of `kind` explains (0 when fewer than
+** its minimum; a long run may stop short of the most by under an eighth where a refit
+** was not worth trying). Two pointers: the run from i - 1 less its first sample is a run
+** from i, so each start resumes where the previous stopped: a short run refitted
+** (warm-started from the previous model), a long one with the previous model, which
+** explains it. O(m) fits' worth of work; then, on noisy sections, the arcs' runs that
+** went astray at their start (extend_arc_runs). */
 static bsfit_err maximal_runs(const seg_section *s, int kind, size_t *len) {
   size_t i, prev = 0, minl = s->min_len[kind];
   seg_model md;
   refit_mark tried = {0, 0};
   for (i = 0; i < s->m; i++) {
-    size_t limit = s->closed ? s->m : s->m - i;
+    size_t limit = run_limit(s, i);
     size_t n = prev > minl ? prev - 1 : minl;
     if ((i & 255) == 0 && bsfit__interrupted(s->a)) return BSFIT_EINTR;
     len[i] = 0;
@@ -342,7 +346,8 @@ static double best_of_kind(const seg_section *s, size_t origin, size_t j, int ki
                            const size_t *len, const cell *prim, const cell *fr, start_heap *h,
                            size_t *start) {
   size_t minl = s->min_len[kind];
-  while (h->next + minl <= j + 1 && distinct(s, kind, (origin + h->next) % s->m, j + 1 - h->next) >= minl) {
+  while (h->next + minl <= j + 1 &&
+         distinct(s, kind, (origin + h->next) % s->m, j + 1 - h->next) >= minl) {
     cell c;
     h->key[h->next] = before_start(h->next, prim, fr, &c);
     heap_push(h, h->next++);
@@ -378,7 +383,8 @@ static void best_primitive_weighed(const seg_section *s, size_t origin, size_t j
     if (j + 1 < minl) continue;
     for (a = j + 1 - minl; j - a < s->longest[kind]; a--) {
       size_t n = j - a + 1;
-      if (len[kind][(origin + a) % s->m] >= n && distinct(s, kind, (origin + a) % s->m, n) >= minl) {
+      if (len[kind][(origin + a) % s->m] >= n &&
+          distinct(s, kind, (origin + a) % s->m, n) >= minl) {
         cell t;
         double cost = before_start(a, prim, fr, &t) + s->penalty * COST[kind];
         if (cost < c->cost) { /* else no residual (>= 0) can make it the cheapest */
@@ -555,8 +561,10 @@ static double turn_between(const seg_model *md, const double *a, const double *b
 static int behind(const seg_section *s, const bsfit_piece *p, const seg_model *md,
                   const double *q, const double *x, int end, double slack) {
   double span, turn, back;
-  if (md->kind == LINE) /* its direction is the samples' */
-    return ((x[0] - q[0]) * md->line.d[0] + (x[1] - q[1]) * md->line.d[1]) * (end ? 1 : -1) < -slack;
+  if (md->kind == LINE) { /* its direction is the samples' */
+    double along = (x[0] - q[0]) * md->line.d[0] + (x[1] - q[1]) * md->line.d[1];
+    return (end ? along : -along) < -slack;
+  }
   span = turn_between(md, sample(s, p->first), sample(s, p->first + p->count - 1));
   turn = end ? turn_between(md, q, x) : turn_between(md, x, q);
   back = turn > 0 ? 2 * PI - turn : 0;
@@ -1188,8 +1196,8 @@ bsfit_err bsfit_segment(const double *pts, size_t m, int dim, const bsfit_segmen
   heap_at = bsfit__alloc(a, bsfit__mulsize(2 * m, sizeof(size_t)));
   heap_key = bsfit__alloc(a, bsfit__mulsize(2 * m, sizeof(double)));
   heap_below = bsfit__alloc(a, bsfit__mulsize(2 * m, sizeof(size_t)));
-  if (!s.gaps || (s.noisy && !s.moves) || !len[0] || !len[1] || !prim || !fr || !buf || !md || !heap_at || !heap_key ||
-      !heap_below) {
+  if (!s.gaps || (s.noisy && !s.moves) || !len[0] || !len[1] || !prim || !fr || !buf || !md ||
+      !heap_at || !heap_key || !heap_below) {
     e = bsfit__fail(st, BSFIT_ENOMEM, "out of memory for the segmentation of %zu points", m);
     goto done;
   }

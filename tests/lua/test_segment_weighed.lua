@@ -71,7 +71,8 @@ T.test("short sides sampled more densely than the noise are lines", function()
           local a, b = corners[k], corners[k % 4 + 1]
           for i = 0, per - 1 do
             local t = (i + 0.5) / per
-            pts[#pts + 1] = { a[1] + t * (b[1] - a[1]) + rel * gauss(), a[2] + t * (b[2] - a[2]) + rel * gauss() }
+            pts[#pts + 1] = { a[1] + t * (b[1] - a[1]) + rel * gauss(),
+                              a[2] + t * (b[2] - a[2]) + rel * gauss() }
           end
         end
         local pieces = bs.geom.segment(bs.points.new(pts), { closed = true, sigma = rel })
@@ -112,8 +113,9 @@ T.test("repeated noisy samples hold no line of two positions", function()
             local a, b = rows[(p.first + j - 2) % #rows + 1], rows[(p.first + j - 1) % #rows + 1]
             if a[1] ~= b[1] or a[2] ~= b[2] then positions = positions + 1 end
           end
-          T.ok(positions + 1 >= 3, ("circle of %d samples x 3, noise %g: line %d of %d samples holds %d positions"):format(
-            k, rel, i, p.count, positions + 1))
+          local what = ("circle of %d samples x 3, noise %g: line %d"):format(k, rel, i)
+          T.ok(positions + 1 >= 3, ("%s of %d samples holds %d positions"):format(what, p.count,
+                                                                                positions + 1))
         end
       end
     end

@@ -245,7 +245,8 @@ end
 -- arc went the short way round, 121 times the noise floor off at 4 uneven samples per
 -- side): whether a meeting point lay beyond an arc's last sample was read off the tangent
 -- there, which tells only near it.
-T.test("an arc sampled on a third of its circle meets its neighbours at the true corners", function()
+T.test("an arc sampled on a third of its circle meets its neighbours at the true corners",
+       function()
   local outlines = { keyhole_a = shapes.keyhole(3, 1.2, 4), keyhole_b = shapes.keyhole(3, 2, 2),
                      keyhole_c = shapes.keyhole(10, 3, 12), d = shapes.d_shape(10) }
   local names = {}
@@ -256,12 +257,15 @@ T.test("an arc sampled on a third of its circle meets its neighbours at the true
     local size = shapes.size(o)
     for _, per in ipairs { 4, 6 } do
       for _, w in ipairs { 0.05, 0.3, 0.6 } do
-        check_clean { name = ("%s, arc sampled over [%g, %g],"):format(name, w, w + 0.35), per = per,
-                      seed = 0, o = o, pts = arc_window_samples(o, per, w, 0, 1), opts = { closed = true } }
+        check_clean { name = ("%s, arc sampled over [%g, %g],"):format(name, w, w + 0.35),
+                      per = per, seed = 0, o = o, pts = arc_window_samples(o, per, w, 0, 1),
+                      opts = { closed = true } }
         local sigma = 1e-4 * size
         -- closed: with a third of an arc sampled, the gap between the ends may say open
-        local C = auto.run(bs.points.new(arc_window_samples(o, per, w, sigma, 7 * per)), { closed = true })
-        local what = ("%s %d per side, arc over [%g, %g], noise 1e-4"):format(name, per, w, w + 0.35)
+        local noisy = arc_window_samples(o, per, w, sigma, 7 * per)
+        local C = auto.run(bs.points.new(noisy), { closed = true })
+        local what = ("%s %d per side, arc over [%g, %g], noise 1e-4"):format(name, per, w,
+                                                                              w + 0.35)
         local h, lim = shapes.hausdorff(bs, C, o, 2000, 60), 3 * sigma + 1e-3 * size
         T.ok(h < lim, ("%s: Hausdorff %g >= %g"):format(what, h, lim))
       end

@@ -54,18 +54,21 @@ end)
 -- An arc whose first samples follow a sampling gap at its corner: those samples bow less
 -- than the noise, the circle fitted to them went astray and the arc's run from them ended
 -- a few samples on, so a line across the corner took them (segment.c, extend_arc_runs).
--- Keyholes of 60 and 150 samples per side, even and uneven, noise 1e-3 and 3e-3, six draws the
--- other sweeps do not use: 39 of 48 were within the floor, 47 now.
+-- Keyholes of 60 and 150 samples per side, even and uneven, noise 1e-3 and 3e-3, six
+-- draws the other sweeps do not use: 39 of 48 were within the floor, 47 now.
 T.test("an arc's first samples after a gap at its corner stay on the arc (48 keyholes)", function()
   local n, within = 0, 0
   local function seed(k, per, j, d) return 77777 + 1000 * k + 10 * per + j + 100000 * d end
-  for c in shapes.sweep_cases { names = { "keyhole" }, pers = { 60, 150 }, draws = 6, seed = seed } do
+  local cases = shapes.sweep_cases { names = { "keyhole" }, pers = { 60, 150 }, draws = 6,
+                                     seed = seed }
+  for c in cases do
     if c.rel > 1e-4 then
       local what = ("keyhole %d per side noise %g draw %d"):format(c.per, c.rel, c.draw)
       local C = auto.run(bs.points.new(c.pts))
       T.eq((bs.geom.self_intersections(C, 2000)), 0, what .. ": self-intersection")
       n = n + 1
-      if shapes.hausdorff(bs, C, c.o, 2000, 60) <= 3 * c.sigma + 1e-3 * c.size then within = within + 1 end
+      local h = shapes.hausdorff(bs, C, c.o, 2000, 60)
+      if h <= 3 * c.sigma + 1e-3 * c.size then within = within + 1 end
     end
   end
   print(("# %d keyholes: %d within 3 sigma + 1e-3"):format(n, within))
@@ -175,7 +178,8 @@ T.test("noisy smooth shapes at noise to 1e-2: no corner", function()
           local P = synth.noisy(synth.sample_smooth(synth.smooth[name], m, draw % 2 == 0), 2.5 * rel,
                                 1000 * draw + m)
           local _, rep = auto.run(P)
-          T.eq(synth.corners_of(rep), 0, ("%s, %d samples, noise %g, draw %d: corners"):format(name, m, rel, draw))
+          local what = ("%s, %d samples, noise %g, draw %d"):format(name, m, rel, draw)
+          T.eq(synth.corners_of(rep), 0, what .. ": corners")
         end
       end
     end

@@ -42,9 +42,10 @@ local function run_case(c)
 end
 
 -- the shares reached (of 390 sections; docs/auto.md, "Noisy and sparse sections")
--- (218, 267, 210 before an arc's run was tried up to where the next run ends; 217, 266, 209 before a join beyond an arc was read round its circle; 207, 260, 199
--- before the noise search tried the levels below its start;
--- 203, 252, 193, 1762 of 1770 and 123 of 149 before two lines continued each other; 193 within with bs.geom.segment's
+-- (218, 267, 210 before an arc's run was tried up to where the next run ends; 217, 266, 209
+-- before a join beyond an arc was read round its circle; 207, 260, 199 before the noise
+-- search tried the levels below its start; 203, 252, 193, 1762 of 1770 and 123 of 149
+-- before two lines continued each other; 193 within with bs.geom.segment's
 -- parameter count alone (param_cost math.huge); 180, 211, 169, 1567 of 1578 and 89 of 114
 -- before the noise search's finer levels, softened weak corners, fillets that claim their
 -- samples and pieces weighed by their residuals; before this work 82 within, 95 through
@@ -183,7 +184,8 @@ T.test("noise 1e-2 of the size: no loop, no error, no corner farther than a samp
 end)
 
 T.test("smooth shapes: no corner, no loop (24 to 200 points, noise 0 to 1e-2, even and uneven)", function()
-  local SMOOTH, names = synth.smooth_shapes() -- synth's circle, ellipse, star, superellipse and a cam
+  -- synth's circle, ellipse, star, superellipse and a cam
+  local SMOOTH, names = synth.smooth_shapes()
   local false_corners = {}
   for _, name in ipairs(names) do
     for _, m in ipairs { 24, 40, 80, 200 } do
@@ -220,7 +222,8 @@ T.test("ellipses at noise 1e-2, 24 to 80 points, eight draws: no corner", functi
       for _, uneven in ipairs { false, true } do
         local P = synth.noisy(synth.sample_smooth(synth.smooth.ellipse, m, uneven), 2.5e-2, 1000 * draw + m + 4)
         local _, rep = auto.run(P)
-        T.eq(synth.corners_of(rep), 0, ("ellipse %d points%s draw %d: corners"):format(m, uneven and " uneven" or "", draw))
+        local what = ("ellipse %d points%s draw %d"):format(m, uneven and " uneven" or "", draw)
+        T.eq(synth.corners_of(rep), 0, what .. ": corners")
       end
     end
   end
