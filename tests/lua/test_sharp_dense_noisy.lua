@@ -15,7 +15,8 @@
 -- since a line run sampled more densely than the noise counts the tolerances it spans
 -- (the serifs' sides were free runs), 128 and 148; 127 and 147 since a piece keeps the
 -- distinct samples its model needs when its boundary moves; 128 and 150 since an arc's run
--- from samples whose first circle went astray is tried up to where the next run ends.
+-- from samples whose first circle went astray is tried up to where the next run ends; 132
+-- and 152 since a softened bend's free run no longer loops.
 local T = require "tap"
 local bs = require "bsfit"
 local shapes = require "shapes_sharp"
@@ -23,7 +24,7 @@ local synth = require "synth"
 local auto = require "bsfit.strategy.auto"
 
 -- the shares reached (docs/auto.md, "Dense noisy sections")
-local FLOOR = { pieces = 124, within = 148, corners = 0.98, radii = 0.85 }
+local FLOOR = { pieces = 128, within = 150, corners = 0.98, radii = 0.85 }
 
 T.test("dense noisy sections of lines and arcs go through their pieces: corners within a sample, "
        .. "radii within 2%, no loop", function()
@@ -75,6 +76,76 @@ T.test("an arc's first samples after a gap at its corner stay on the arc (48 key
   T.ok(within >= 45, ("%d of %d keyholes within the floor"):format(within, n))
 end)
 
+-- Fillets read as lines meeting at weak corners, each corner softened into a bend of two
+-- samples (sharp.soften): the free run's cubic had end tangents as long as the polyline
+-- through its samples, which noise makes several times its chord where the samples are
+-- closer than the noise, and a count that interpolated a sample 2.5 sigma off; its ends
+-- overshot into a small loop, the pieces' curve crossed itself and the section lost its
+-- corners to the smooth path (sharp.lua, free_length and explains_as_noise). Filleted
+-- hexagons and pentagons and rounded rectangles of 100 samples per side, noise 1e-3 and
+-- 3e-3, even and uneven, five draws the other sweeps do not use: 38 of 60 went through
+-- their pieces, 58 were within the floor, 33 had every corner; now 47, 60 and 42.
+T.test("dense noisy filleted outlines: a softened bend's free run does not loop", function()
+  local n, pieces, within, every_corner = 0, 0, 0, 0
+  local function seed(k, per, j, d) return 55555 + 1000 * k + 10 * per + j + 100000 * d end
+  local cases = shapes.sweep_cases { names = { "hexagon", "pentagon", "rrect" }, pers = { 100 },
+                                     rels = { 1e-3, 3e-3 }, draws = 5, seed = seed }
+  for c in cases do
+    local what = ("%s noise %g draw %d"):format(c.name, c.rel, c.draw)
+    local C, rep = auto.run(bs.points.new(c.pts))
+    T.eq((bs.geom.self_intersections(C, 2000)), 0, what .. ": self-intersection")
+    local f = shapes.features_found(c.o, c.pts, rep.pieces)
+    n = n + 1
+    if rep.pieces then pieces = pieces + 1 end
+    local h = shapes.hausdorff(bs, C, c.o, 2000, 60)
+    if h <= 3 * c.sigma + 1e-3 * c.size then within = within + 1 end
+    if f.corners > 0 and f.corners_ok == f.corners then every_corner = every_corner + 1 end
+  end
+  print(("# %d filleted outlines: %d through the pieces, %d within 3 sigma + 1e-3, %d with every "
+         .. "corner"):format(n, pieces, within, every_corner))
+  T.ok(pieces >= 45, ("%d of %d through the pieces"):format(pieces, n))
+  T.ok(within >= 60, ("%d of %d within the floor"):format(within, n))
+  T.ok(every_corner >= 40, ("%d of %d with every corner"):format(every_corner, n))
+end)
+
+-- The bend itself: two lines meeting at 15, 30 and 45 degrees, sampled every 1/4, 1/2 and
+-- 1 sigma at noise sigma, 20 draws each, segmented at sigma; where the corner is found,
+-- sharp.soften makes it a bend and sharp.assemble the curve. The feet of the samples next
+-- to the corner were out of order (one past the corner) and the free run's tangents as long
+-- as its noisy polyline: 60 of the 168 bends crossed themselves; 10 now (the rest: the
+-- free run's own samples out of order; auto refuses such pieces, the smooth path remains).
+T.test("a corner softened between dense noisy lines: the bend seldom loops", function()
+  local sharp = require "bsfit.strategy.sharp"
+  local bends, loops = 0, 0
+  for _, turn in ipairs { 15, 30, 45 } do
+    for _, h in ipairs { 0.25, 0.5, 1 } do
+      for draw = 1, 20 do
+        local _, gauss = shapes.rng(draw * 7919 + turn * 31 + h * 1000)
+        local sigma, th, pts = 1e-2, math.rad(turn), {}
+        for k = -80, 80 do
+          local t = k * h * sigma
+          local x, y = t, 0
+          if t > 0 then x, y = t * math.cos(th), t * math.sin(th) end
+          pts[#pts + 1] = { x + sigma * gauss(), y + sigma * gauss() }
+        end
+        local P = bs.points.new(pts)
+        local pieces = bs.geom.segment(P, { closed = false, sigma = sigma })
+        local at
+        for i, p in ipairs(pieces) do if i > 1 and p.join == "corner" then at = i end end
+        local soft = at and sharp.soften(P, pieces, at)
+        if soft then
+          local C = sharp.assemble(P, soft, { closed = false, sigma = sigma })
+          bends = bends + 1
+          if bs.geom.self_intersections(C, 4000) > 0 then loops = loops + 1 end
+        end
+      end
+    end
+  end
+  print(("# %d softened corners: %d loops"):format(bends, loops))
+  T.ok(bends >= 160, ("%d of 180 corners found and softened"):format(bends))
+  T.ok(loops <= 12, ("%d of %d bends loop"):format(loops, bends))
+end)
+
 -- A scanner's shadow at every corner: dense sections whose primitives are sampled evenly over
 -- [b, 1 - b] only (5% and 10% of each side bare at both ends), noise 1e-4 and 1e-3 of the
 -- size, every outline with corners: 88 sections. Two runs shorter than the bare stretch
@@ -84,8 +155,8 @@ end)
 -- samples per side read evidence 2 to 9 and were softened into bends that bulged 6 times
 -- the floor out; 46 of these sections were within the floor and 39 had every corner, then
 -- 76 and 70, 82 and 77 with dense line runs counted by their span, 83 and 78 with arcs'
--- runs tried up to where the next run ends.
-local BARE_FLOOR = { within = 80, corners = 75 }
+-- runs tried up to where the next run ends, 87 and 80 with softened bends that do not loop.
+local BARE_FLOOR = { within = 84, corners = 78 }
 
 T.test("dense noisy sections with the ends of every side bare: corners confirmed across the gap", function()
   local n, within, all_corners = 0, 0, 0

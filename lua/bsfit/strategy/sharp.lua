@@ -11,7 +11,8 @@
 -- the neighbouring primitives' ends with their tangents (G1); bs.curve.join makes them
 -- one curve with knots of multiplicity 3 at the joins. On exact data (sigma 0) a free
 -- run is interpolated (the clamped cubic spline with end tangents: knots at its
--- samples' parameters); on noisy data its count grows until its RMS reaches the noise.
+-- samples' parameters); on noisy data its count grows until it explains the samples as
+-- noise would.
 
 local bs = require "bsfit"
 
@@ -72,8 +73,37 @@ local function quantile_knots(u, n)
   return bs.knots.new { degree = 3, values = kv }
 end
 
+-- The length a noisy free run's end tangents are given (pts: its ends and samples, L
+-- their polyline's length). Noise lengthens every step (a step of true length d between
+-- samples of noise sigma in each coordinate has a mean square d^2 + 4 sigma^2): where the samples
+-- are closer than the noise, L is mostly noise, and tangents that long made the cubic
+-- overshoot its ends into a small loop (a fillet read as lines and softened into a bend
+-- of two samples at noise 1e-3: the pieces' curve crossed itself, and the section lost
+-- its corners to the smooth path). Each step counts what is left of it after the noise,
+-- and the whole no less than the chord (a bend no tighter than a half circle is under
+-- 1.6 chords long).
+local function free_length(pts, L, sigma)
+  if sigma <= 0 then return L end
+  local denoised = 0
+  for i = 2, #pts do
+    denoised = denoised + math.sqrt(math.max(dist(pts[i], pts[i - 1]) ^ 2 - 4 * sigma ^ 2, 0))
+  end
+  return math.min(L, math.max(denoised, 1.5 * dist(pts[1], pts[#pts])))
+end
+
+-- Whether a noisy free run's fit explains its c samples as noise would: its squared
+-- residuals (rss, in sigma^2) within the mean plus three standard deviations of a
+-- chi-square of c degrees of freedom, or 1.44 c (an RMS of 1.2 sigma) when that is more.
+-- The RMS alone refused a run of 2 samples one time in four where the cubic was right,
+-- and the next count interpolated a sample 2.5 sigma off: a spike, then a loop.
+local function explains_as_noise(rss, c)
+  c = math.max(c, 1)
+  return rss <= math.max(1.44 * c, c + 3 * math.sqrt(2 * c))
+end
+
 -- One free run: fixed ends at the pieces' ends, tangents of the neighbours (G1).
--- Exact data: interpolated; noisy: the fewest control points whose RMS reaches sigma.
+-- Exact data: interpolated; noisy: the fewest control points that explain its samples as
+-- noise would (explains_as_noise), the tangents no longer than free_length.
 local function free_run(P, p, o)
   local inner, ww = piece_samples(P, p, o.weights)
   local a, b = p.start, p["end"]
@@ -90,6 +120,7 @@ local function free_run(P, p, o)
   local u, L = chord_params(pts)
   if not u then return hermite(a, b, p.t_start, p.t_end) end
   local Q, U, W = bs.points.new(pts), bs.vector.new(u), bs.vector.new(w)
+  L = free_length(pts, L, o.sigma)
   local base = { degree = 3, fix_ends = true, solver = "auto",
                  tangent_start = { L * p.t_start[1], L * p.t_start[2] },
                  tangent_end = { L * p.t_end[1], L * p.t_end[2] } }
@@ -107,7 +138,7 @@ local function free_run(P, p, o)
     local C, rep = bs.fitter(base):fit(Q, U, W)
     if C then
       best = C
-      if o.sigma > 0 and rep.rms * math.sqrt(#pts / math.max(c, 1)) <= 1.2 * o.sigma then break end
+      if o.sigma > 0 and explains_as_noise(rep.rms ^ 2 * #pts / o.sigma ^ 2, c) then break end
     end
   end
   return best or hermite(a, b, p.t_start, p.t_end)
@@ -353,6 +384,43 @@ local function foot(p, x)
   return { c[1] + r * dx / d, c[2] + r * dy / d }, { -s * dy / d, s * dx / d }
 end
 
+-- The point s along a primitive piece's model from x (on it), and the unit tangent there.
+local function along(p, x, s)
+  if p.kind == "line" then
+    local t = p.t_start
+    return { x[1] + s * t[1], x[2] + s * t[2] }, { t[1], t[2] }
+  end
+  local c, r = p.centre, p.radius
+  local a = math.atan(x[2] - c[2], x[1] - c[1]) + (p.sweep > 0 and 1 or -1) * s / r
+  return foot(p, { c[1] + r * math.cos(a), c[2] + r * math.sin(a) })
+end
+
+-- The ends of the bend that softens the corner between A and B: the feet of A's last and
+-- B's first samples (a_last, b_first) on their models. Where the samples are closer than
+-- the noise, a foot can lie past the corner (A's last a few sigma beyond it, B's first
+-- before it) and the bend went back on itself, a small loop; such a foot is moved to the
+-- corner's other side, as far from it as it was (at least half the two samples' distance,
+-- at most half its piece). Returns the start, its tangent, the end, its tangent (nil when
+-- a foot is not defined).
+local function bend_ends(A, B, a_last, b_first)
+  local ea, ta = foot(A, a_last)
+  local sb, tb = foot(B, b_first)
+  if not ea or not sb then return nil end
+  local x = B.start
+  if dist(A["end"], x) > 1e-9 * (dist(ea, x) + dist(sb, x)) then return ea, ta, sb, tb end
+  local before = (x[1] - ea[1]) * ta[1] + (x[2] - ea[2]) * ta[2]
+  local after = (sb[1] - x[1]) * tb[1] + (sb[2] - x[2]) * tb[2]
+  local least = 0.5 * dist(a_last, b_first)
+  if not (before > 0) then
+    ea, ta = along(A, x, -math.min(math.max(-before, least), 0.5 * dist(A.start, x)))
+  end
+  if not (after > 0) then
+    sb, tb = along(B, x, math.min(math.max(-after, least), 0.5 * dist(x, B["end"])))
+  end
+  if not ea or not sb then return nil end
+  return ea, ta, sb, tb
+end
+
 -- Softens the corner where pieces[i] starts into a smooth bend: the samples next to it (the
 -- last of the piece before, the first of pieces[i]; the shared one when the corner is
 -- sampled) become a free run joined tangentially to both, fitted like any free run. For a
@@ -373,9 +441,8 @@ function M.soften(P, pieces, i)
               count = shared and 1 or 2, join = "tangent" }
   local a_last = { P:get((A.first - 1 + A.count - 1 - giveA) % m + 1) }
   local b_first = { P:get((B.first - 1 + giveB) % m + 1) }
-  local ea, ta = foot(A, a_last)
-  local sb, tb = foot(B, b_first)
-  if not ea or not sb then return nil end
+  local ea, ta, sb, tb = bend_ends(A, B, a_last, b_first)
+  if not ea then return nil end
   local A2, B2 = {}, {}
   for k, v in pairs(A) do A2[k] = v end
   for k, v in pairs(B) do B2[k] = v end
