@@ -75,13 +75,13 @@ end
 
 -- The length a noisy free run's end tangents are given (pts: its ends and samples, L
 -- their polyline's length). Noise lengthens every step (a step of true length d between
--- samples of noise sigma in each coordinate has a mean square d^2 + 4 sigma^2): where the samples
--- are closer than the noise, L is mostly noise, and tangents that long made the cubic
--- overshoot its ends into a small loop (a fillet read as lines and softened into a bend
--- of two samples at noise 1e-3: the pieces' curve crossed itself, and the section lost
--- its corners to the smooth path). Each step counts what is left of it after the noise,
--- and the whole no less than the chord (a bend no tighter than a half circle is under
--- 1.6 chords long).
+-- samples of noise sigma in each coordinate has a mean square d^2 + 4 sigma^2): where
+-- the samples are closer than the noise, L is mostly noise, and tangents that long made
+-- the cubic overshoot its ends into a small loop (a fillet read as lines and softened
+-- into a bend of two samples at noise 1e-3: the pieces' curve crossed itself, and the
+-- section lost its corners to the smooth path). Each step counts what is left of it
+-- after the noise, and the whole no less than 1.5 chords (a bend no tighter than a half
+-- circle is under 1.6 chords long), nor more than L.
 local function free_length(pts, L, sigma)
   if sigma <= 0 then return L end
   local denoised = 0
