@@ -641,18 +641,11 @@ static void set_line_ends(bsfit_piece *p, const seg_model *md) {
   memcpy(p->t_end, md->line.d, sizeof p->t_end);
 }
 
-/* arcs: the sweep from start to end in the samples' direction */
+/* arcs: the sweep from start to end in the samples' direction (signed; a whole turn when
+** they coincide) */
 static void set_arc_sweep(bsfit_piece *p, const seg_model *md, int whole) {
-  double a0 = atan2(p->start[1] - md->circle.c[1], p->start[0] - md->circle.c[0]);
-  double a1 = atan2(p->end[1] - md->circle.c[1], p->end[0] - md->circle.c[0]);
-  double sw = a1 - a0;
-  if (whole) sw = 0;
-  if (md->orient > 0) {
-    while (sw <= 0) sw += 2 * PI;
-  } else {
-    while (sw >= 0) sw -= 2 * PI;
-  }
-  p->sweep = sw;
+  double turn = whole ? 0 : turn_between(md, p->start, p->end);
+  p->sweep = md->orient * (turn > 0 ? turn : 2 * PI);
 }
 
 /* A meets B (both in the list, B after A): sets A's end, B's start, tangents and B's

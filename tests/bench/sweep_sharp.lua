@@ -83,7 +83,7 @@ for c in shapes.sweep_cases() do
       print(("%-8s %2d %-6g %-6s error: %s"):format(name, per, rel, uneven and "uneven" or "even",
                                                     C))
     else
-      local ratio = shapes.hausdorff(bs, C, c.o, 2000, 60) / floor
+      local ratio = shapes.floor_ratio(bs, C, c)
       if ratio <= 1 then within = within + 1 end
       if rep.pieces then pieces = pieces + 1 end
       if rep.pieces and ratio <= 1 then pieces_within = pieces_within + 1 end

@@ -337,6 +337,12 @@ function M.hausdorff(bs, C, o, k, dense)
   return h
 end
 
+-- A sweep case's result C against the issue's floor: its Hausdorff distance to the true
+-- outline over 3 sigma + 1e-3 of the size (within when at most 1).
+function M.floor_ratio(bs, C, c)
+  return M.hausdorff(bs, C, c.o, 2000, 60) / (3 * c.sigma + 1e-3 * c.size)
+end
+
 M.tangent = tangent
 M.length = length
 

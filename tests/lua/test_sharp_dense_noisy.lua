@@ -36,7 +36,7 @@ T.test("dense noisy sections of lines and arcs go through their pieces: corners 
     if ok then
       T.eq((bs.geom.self_intersections(C, 2000)), 0, what .. ": self-intersection")
       T.ok(rep.max < math.huge, what .. ": finite report")
-      local ratio = shapes.hausdorff(bs, C, c.o, 2000, 60) / (3 * c.sigma + 1e-3 * c.size)
+      local ratio = shapes.floor_ratio(bs, C, c)
       local f = shapes.features_found(c.o, c.pts, rep.pieces)
       tot.n = tot.n + 1
       if rep.pieces then tot.pieces = tot.pieces + 1 end
@@ -68,8 +68,7 @@ T.test("an arc's first samples after a gap at its corner stay on the arc (48 key
       local C = auto.run(bs.points.new(c.pts))
       T.eq((bs.geom.self_intersections(C, 2000)), 0, what .. ": self-intersection")
       n = n + 1
-      local h = shapes.hausdorff(bs, C, c.o, 2000, 60)
-      if h <= 3 * c.sigma + 1e-3 * c.size then within = within + 1 end
+      if shapes.floor_ratio(bs, C, c) <= 1 then within = within + 1 end
     end
   end
   print(("# %d keyholes: %d within 3 sigma + 1e-3"):format(n, within))
@@ -97,8 +96,7 @@ T.test("dense noisy filleted outlines: a softened bend's free run does not loop"
     local f = shapes.features_found(c.o, c.pts, rep.pieces)
     n = n + 1
     if rep.pieces then pieces = pieces + 1 end
-    local h = shapes.hausdorff(bs, C, c.o, 2000, 60)
-    if h <= 3 * c.sigma + 1e-3 * c.size then within = within + 1 end
+    if shapes.floor_ratio(bs, C, c) <= 1 then within = within + 1 end
     if f.corners > 0 and f.corners_ok == f.corners then every_corner = every_corner + 1 end
   end
   print(("# %d filleted outlines: %d through the pieces, %d within 3 sigma + 1e-3, %d with every "

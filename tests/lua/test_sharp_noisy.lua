@@ -22,7 +22,7 @@ local ALL, NAMES = shapes.all(), shapes.names()
 -- measures. Returns {pieces, within (Hausdorff), ratio, corners_ok, corners, radii_ok, radii}.
 local function run_case(c)
   local name, per, rel, uneven, seed = c.name, c.per, c.rel, c.uneven, c.seed
-  local o, size, sigma, pts = c.o, c.size, c.sigma, c.pts
+  local o, pts = c.o, c.pts
   local what = ("%s %d per side noise %g %s seed %d"):format(name, per, rel,
                                                              uneven and "uneven" or "even", seed)
   local ok, C, rep = pcall(auto.run, bs.points.new(pts))
@@ -32,8 +32,7 @@ local function run_case(c)
   T.ok(rep.closed or rep.closed_ambiguous, what .. ": fitted open without a word")
   T.ok(rep.max == rep.max and rep.max < math.huge, what .. ": finite report")
   T.eq((bs.geom.self_intersections(C, 2000)), 0, what .. ": self-intersection")
-  local h = shapes.hausdorff(bs, C, o, 2000, 60)
-  local r = { pieces = rep.pieces ~= nil, ratio = h / (3 * sigma + 1e-3 * size), closed = rep.closed,
+  local r = { pieces = rep.pieces ~= nil, ratio = shapes.floor_ratio(bs, C, c), closed = rep.closed,
               corners = 0, corners_ok = 0, radii = 0, radii_ok = 0 }
   r.within = r.ratio <= 1
   local found = shapes.features_found(o, pts, rep.pieces)
