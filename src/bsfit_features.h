@@ -150,9 +150,11 @@ BSFIT_API bsfit_err bsfit_curve_join(const bsfit_curve *const *parts, size_t n,
                                      const double *lengths, bsfit_curve *out,
                                      const bsfit_allocator *al, bsfit_status *st);
 
-/** Whether the closed or open polyline of k samples of a 2D curve crosses itself, by a
-** sweep over its edges sorted by x (O(k log k) plus the pairs whose x-ranges overlap).
-** Edges that share a sample do not count.
+/** Whether the closed or open polyline of samples of a 2D curve crosses itself, by a
+** sweep over its edges sorted along an axis (O(k log k) plus the pairs whose ranges
+** overlap). The samples: k even in the parameter, and 24 on either side of every corner
+** (a knot of multiplicity >= the degree), at 2^-1 .. 2^-24 of the span beside it, where a
+** loop can be far shorter than the even step. Edges that share a sample do not count.
 ** @param[out] crossings number of crossing edge pairs found (capped at 1000).
 ** @param[out] where     when not NULL and crossings > 0: a parameter of the curve at
 **                       the first crossing found.

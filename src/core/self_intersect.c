@@ -6,7 +6,9 @@
 ** first end passes its last. The axis is at 1 radian to x, not x itself: the edges of a
 ** side parallel to the sweep's normal all overlap each other, and made objects have
 ** their sides along x and y (a T of 40 samples took 0.46 ms, its 2000 samples' vertical
-** edges compared pairwise).
+** edges compared pairwise). Besides the k even samples, the curve is sampled ever closer
+** to each of its corners (knots of multiplicity >= degree), where a loop can be far
+** shorter than the even step (corner_params).
 */
 #include "internal.h"
 
@@ -42,6 +44,72 @@ static int adjacent(size_t i, size_t j, size_t ne, int closed) {
   return hi == lo + 1 || (closed && lo == 0 && hi == ne - 1);
 }
 
+/* Halvings of a span towards a corner: a loop as short as 2^-REFINE of the span beside
+** the corner is still seen (6e-8 of it). A gear's smooth fit at noise 1e-3 of its size had its two
+** sides cross 3e-4 of the period past a corner, between two of 2208 even samples. */
+#define REFINE 24
+
+/* the number of distinct knots in [a, b] where the curve may turn at an angle (multiplicity
+** >= degree); with u != NULL, REFINE parameters on either side of each, ever closer to it */
+static size_t corner_params(const bsfit_curve *c, double a, double b, double *u) {
+  size_t i = 0, j, nk = c->n + (size_t)c->degree + 1, found = 0;
+  double eps = 1e-14 * (b - a);
+  while (i < nk) {
+    double t = c->knots[i], before, after;
+    j = i;
+    while (j < nk && c->knots[j] - t <= eps) j++;
+    if (j - i >= (size_t)c->degree && t >= a - eps && t <= b + eps && i > 0 && j < nk) {
+      before = t - c->knots[i - 1], after = c->knots[j] - t;
+      if (u) {
+        int r;
+        double h = 0.5;
+        for (r = 0; r < REFINE; r++, h *= 0.5) {
+          u[2 * REFINE * found + 2 * r] = t - h * before;
+          u[2 * REFINE * found + 2 * r + 1] = t + h * after;
+        }
+      }
+      found++;
+    }
+    i = j;
+  }
+  return found;
+}
+
+static int by_value(const void *a, const void *b) {
+  double x = *(const double *)a, y = *(const double *)b;
+  return x < y ? -1 : x > y;
+}
+
+/* The sample parameters, sorted in [a, b] ([a, b) when periodic): the k even ones merged
+** with those near the corners (wrapped into the period, sorted: far fewer). Returns their
+** count; 0 on no memory. */
+static size_t sample_params(const bsfit_curve *c, size_t k, double **out, size_t *bytes,
+                            const bsfit_allocator *al) {
+  double a, b, *u, *near;
+  size_t i, j, n, nc, nn;
+  bsfit_curve_domain(c, &a, &b);
+  nc = corner_params(c, a, b, NULL);
+  nn = 2 * REFINE * nc;
+  n = k + nn;
+  *bytes = bsfit__mulsize(n + nn + 1, sizeof *u);
+  if (!(u = *out = bsfit__alloc(al, *bytes))) return 0;
+  near = u + n; /* scratch after the merged list */
+  corner_params(c, a, b, near);
+  for (i = 0; i < nn; i++) {
+    if (c->periodic) near[i] = a + fmod(fmod(near[i] - a, b - a) + (b - a), b - a);
+    else near[i] = fmin(fmax(near[i], a), b);
+  }
+  qsort(near, nn, sizeof *near, by_value);
+  for (i = k, j = nn; i > 0 || j > 0;) { /* merge from the top; the even ones made as taken */
+    double even = i > 0 ? a + (b - a) * (double)(i - 1) / (double)(c->periodic ? k : k - 1) : 0;
+    int take_near = j > 0 && (i == 0 || near[j - 1] > even);
+    u[i + j - 1] = take_near ? near[j - 1] : even;
+    if (take_near) j--;
+    else i--;
+  }
+  return n;
+}
+
 static size_t sweep(const double *S, edge *E, size_t ne, int closed, size_t *first,
                     const bsfit_allocator *al, int *stop) {
   size_t a, b, found = 0;
@@ -65,9 +133,9 @@ static size_t sweep(const double *S, edge *E, size_t ne, int closed, size_t *fir
 bsfit_err bsfit_curve_self_intersections(const bsfit_curve *c, size_t k, size_t *crossings,
                                          double *where, const bsfit_allocator *al,
                                          bsfit_status *st) {
-  double *S, a, b, u0, u1;
-  edge *E;
-  size_t i, ne, first = 0, bs, es;
+  double *S = NULL, *u = NULL;
+  edge *E = NULL;
+  size_t i, ne, first = 0, bs = 0, es = 0, us = 0;
   int closed, stop = 0;
   bsfit_err e;
   if (crossings) *crossings = 0;
@@ -77,15 +145,20 @@ bsfit_err bsfit_curve_self_intersections(const bsfit_curve *c, size_t k, size_t 
     return bsfit__fail(st, BSFIT_EDIM, "self-intersection needs a 2D curve, got dim %d", c->dim);
   if (k < 3)
     return bsfit__fail(st, BSFIT_EINVAL, "self-intersection needs at least 3 samples, got %zu", k);
-  bs = bsfit__mulsize(k + 1, 2 * sizeof(double));
-  S = bsfit__alloc(al, bs);
-  es = bsfit__mulsize(k, sizeof *E);
-  E = bsfit__alloc(al, es);
-  if (!S || !E) {
+  if (c->n == 0 || c->knots == NULL)
+    return bsfit__fail(st, BSFIT_EINVAL, "self-intersection: empty curve");
+  k = sample_params(c, k, &u, &us, al);
+  if (k) {
+    bs = bsfit__mulsize(k + 1, 2 * sizeof(double));
+    S = bsfit__alloc(al, bs);
+    es = bsfit__mulsize(k, sizeof *E);
+    E = bsfit__alloc(al, es);
+  }
+  if (!u || !S || !E) {
     e = bsfit__fail(st, BSFIT_ENOMEM, "self-intersection: out of memory");
     goto done;
   }
-  e = bsfit_curve_sample(c, k, S, al, st);
+  e = bsfit_curve_eval_many(c, u, k, S, st);
   if (e != BSFIT_OK) goto done;
   /* a closed curve (periodic, or whose ends meet) is a closed polyline */
   closed = c->periodic || (S[0] == S[2 * (k - 1)] && S[1] == S[2 * (k - 1) + 1]);
@@ -104,14 +177,10 @@ bsfit_err bsfit_curve_self_intersections(const bsfit_curve *c, size_t k, size_t 
     e = bsfit__fail(st, BSFIT_EINTR, "self-intersection: interrupted");
     goto done;
   }
-  if (where && *crossings > 0) {
-    bsfit_curve_domain(c, &a, &b);
-    u0 = a + (b - a) * (double)first / (double)(c->periodic ? k : k - 1);
-    u1 = b;
-    *where = u0 < u1 ? u0 : u1;
-  }
+  if (where && *crossings > 0) *where = u[first];
   e = bsfit__ok(st);
 done:
+  bsfit__free(al, u, u ? us : 0);
   bsfit__free(al, S, S ? bs : 0);
   bsfit__free(al, E, E ? es : 0);
   return e;

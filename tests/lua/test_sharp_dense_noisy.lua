@@ -16,7 +16,8 @@
 -- (the serifs' sides were free runs), 128 and 148; 127 and 147 since a piece keeps the
 -- distinct samples its model needs when its boundary moves; 128 and 150 since an arc's run
 -- from samples whose first circle went astray is tried up to where the next run ends; 132
--- and 152 since a softened bend's free run no longer loops.
+-- and 152 since a softened bend's free run no longer loops; 133 and 151 since the loop
+-- check samples ever closer to the corners (hooks and zig-zags at corners it had missed).
 local T = require "tap"
 local bs = require "bsfit"
 local shapes = require "shapes_sharp"
@@ -217,6 +218,36 @@ T.test("dense noisy sections: every sample in a piece, none of too few; the nois
   end
   print(("# segment_sigma within 20%% of the true noise on %d of %d dense sections"):format(near, n))
   T.ok(near >= 0.85 * n, ("segment_sigma within 20%% on %d of %d"):format(near, n))
+end)
+
+-- A dense section's cover is found on every k-th sample and each boundary then placed among
+-- the samples around it; a line must still hold the distinct samples it needs there (steps
+-- longer than the tolerance, or tolerances spanned end to end: bs.geom.segment's rule).
+-- Before, a boundary could leave a line of 5 crowded samples spanning a fifth of the
+-- tolerance, at 75 degrees across a serif T's straight side (300 uneven samples per side at
+-- noise 1e-4): its curve zig-zagged there and crossed itself.
+T.test("dense noisy sections: each line holds samples that fix its direction", function()
+  local bad = {}
+  for c in shapes.sweep_cases { pers = { 100, 300 }, unevens = { true } } do
+    local P = bs.points.new(c.pts)
+    local tol = 4 * c.sigma
+    for i, p in ipairs(bs.geom.segment(P, { closed = true, sigma = c.sigma })) do
+      if p.kind == "line" then
+        local long, m = 0, #P
+        local x0, y0 = P:get(p.first)
+        local x1, y1 = P:get((p.first + p.count - 2) % m + 1)
+        for j = 1, p.count - 1 do
+          local ax, ay = P:get((p.first + j - 2) % m + 1)
+          local bx, by = P:get((p.first + j - 1) % m + 1)
+          if math.sqrt((bx - ax) ^ 2 + (by - ay) ^ 2) > tol then long = long + 1 end
+        end
+        if long < 2 and math.sqrt((x1 - x0) ^ 2 + (y1 - y0) ^ 2) < 2 * tol then
+          bad[#bad + 1] = ("%s %d per side noise %g: line %d"):format(c.name, c.per, c.rel, i)
+        end
+      end
+    end
+  end
+  T.eq(#bad, 0, table.concat(bad, "; "))
 end)
 
 -- A large open section whose samples crowd closer than the noise takes its parameters along
