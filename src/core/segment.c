@@ -1092,6 +1092,14 @@ static size_t finish_pieces(const seg_section *s, bsfit_piece *p, seg_model *md,
   for (i = 0; i < np; i++) {
     md[i].kind = p[i].kind;
     if (p[i].kind != FREE) bsfit__segment_refit(s, &p[i], &md[i]);
+    /* a model that cannot be fitted on its piece's samples is none (a dense cover's arc
+    ** moved onto every sample of a straight side, whose circle fit then fails, came out
+    ** with max = inf): an arc becomes the line of its samples, else a free run */
+    if (p[i].kind == ARC && !(p[i].max < HUGE_VAL)) {
+      p[i].kind = md[i].kind = LINE;
+      bsfit__segment_refit(s, &p[i], &md[i]);
+    }
+    if (p[i].kind != FREE && !(p[i].max < HUGE_VAL)) p[i].kind = md[i].kind = FREE;
     /* an arc goes round at most once (a closed section's whole circle closes that turn) */
     if (p[i].kind == ARC && arc_turn(s, &p[i], &md[i]) > 2 * PI * (1 + 1e-9))
       p[i].kind = md[i].kind = FREE;

@@ -16,8 +16,9 @@
 -- (the serifs' sides were free runs), 128 and 148; 127 and 147 since a piece keeps the
 -- distinct samples its model needs when its boundary moves; 128 and 150 since an arc's run
 -- from samples whose first circle went astray is tried up to where the next run ends; 132
--- and 152 since a softened bend's free run no longer loops; 133 and 151 since the loop
--- check samples ever closer to the corners (hooks and zig-zags at corners it had missed).
+-- and 152 since a softened bend's free run no longer loops; 136 and 152 since the loop
+-- check samples ever closer to the corners (hooks and zig-zags at corners it had missed)
+-- and an arc whose circle fit fails on its samples is their line.
 local T = require "tap"
 local bs = require "bsfit"
 local shapes = require "shapes_sharp"
@@ -247,6 +248,27 @@ T.test("dense noisy sections: each line holds samples that fix its direction", f
       end
     end
   end
+  T.eq(#bad, 0, table.concat(bad, "; "))
+end)
+
+-- Every line and arc bs.geom.segment returns is fitted to its samples: a dense cover's arc
+-- moved onto every sample of a straight side (a gear's, an H's, a serif L's at 100 samples
+-- per side) could fail its circle fit there and came out an arc with max = inf (its model
+-- undefined, its curve far off: the pieces refused or wrong). Now such an arc is the line
+-- of its samples (a free run where no line fits either).
+T.test("dense noisy sections: every line and arc is fitted (a finite max)", function()
+  local bad, t0 = {}, os.clock()
+  for c in shapes.sweep_cases { pers = { 100 } } do
+    local P = bs.points.new(c.pts)
+    local s = bs.geom.segment_sigma(P, { closed = true })
+    for i, p in ipairs(s > 0 and bs.geom.segment(P, { closed = true, sigma = s }) or {}) do
+      if p.kind ~= "free" and not (p.max < math.huge and p.rms < math.huge) then
+        bad[#bad + 1] = ("%s %d per side noise %g %s: %s %d, max %g"):format(c.name, c.per, c.rel,
+          c.uneven and "uneven" or "even", p.kind, i, p.max)
+      end
+    end
+  end
+  print(("# %.1f s"):format(os.clock() - t0))
   T.eq(#bad, 0, table.concat(bad, "; "))
 end)
 
