@@ -83,7 +83,8 @@ static int place_boundaries(const seg_section *s, const bsfit_piece *q, const si
   for (i = 0; i < n; i++) {
     int kind = q[idx[i]].kind;
     if (bound[i + 1] < bound[i] + (kind == FREE ? 1 : s->min_len[kind])) return 0;
-    if (kind != FREE && distinct(s, kind, bound[i] % s->m, bound[i + 1] - bound[i]) < s->min_len[kind])
+    if (kind != FREE &&
+        distinct(s, kind, bound[i] % s->m, bound[i + 1] - bound[i]) < s->min_len[kind])
       return 0;
   }
   return 1;

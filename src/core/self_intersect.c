@@ -45,8 +45,8 @@ static int adjacent(size_t i, size_t j, size_t ne, int closed) {
 }
 
 /* Halvings of a span towards a corner: a loop as short as 2^-REFINE of the span beside
-** the corner is still seen (6e-8 of it). A gear's smooth fit at noise 1e-3 of its size had its two
-** sides cross 3e-4 of the period past a corner, between two of 2208 even samples. */
+** the corner (6e-8 of it) is still seen. A gear's smooth fit at noise 1e-3 of its size had
+** its two sides cross 3e-4 of the period past a corner, between two of 2208 even samples. */
 #define REFINE 24
 
 /* the number of distinct knots in [a, b] where the curve may turn at an angle (multiplicity

@@ -43,7 +43,8 @@ end
 -- the shares reached (of 390 sections; docs/auto.md, "Noisy and sparse sections")
 -- (269 and 212 since an arc whose circle fit fails on its samples is their line and the
 -- loop check samples closer to the corners, which sent a keyhole of 3 samples per side at
--- noise 1e-4 whose pieces crossed themselves to the smooth path; 218, 267, 210 before an arc's run was tried up to where the next run ends; 217, 266, 209
+-- noise 1e-4 whose pieces crossed themselves to the smooth path; 218, 267, 210 before an
+-- arc's run was tried up to where the next run ends; 217, 266, 209
 -- before a join beyond an arc was read round its circle; 207, 260, 199 before the noise
 -- search tried the levels below its start; 203, 252, 193, 1762 of 1770 and 123 of 149
 -- before two lines continued each other; 193 within with bs.geom.segment's
