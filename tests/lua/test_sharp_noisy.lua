@@ -94,7 +94,9 @@ end)
 -- start the levels above the noise, where no level matches; the levels below the start are
 -- then tried. 832 sections: 67 estimates of 0 and 635 within a factor 3 of the true noise
 -- before, 44 and 652 after; a slot of 4 samples per side at noise 1e-4 started at 11 times
--- its noise and read 0 (sent down the smooth path, 7 times the floor off).
+-- its noise and read 0 (sent down the smooth path, 7 times the floor off). 32 and 649
+-- before an arc whose circle fit fails became the line of its samples, 40 and 647 after:
+-- such an arc had counted its samples at residual 0, a pooled residual too low to be one.
 T.test("the noise of the pieces when the first guess lies above it", function()
   local n, zero, good = 0, 0, 0
   for _, name in ipairs(NAMES) do
@@ -116,7 +118,7 @@ T.test("the noise of the pieces when the first guess lies above it", function()
     end
   end
   print(("# segment_sigma: %d sections, %d estimates 0, %d within a factor 3"):format(n, zero, good))
-  T.ok(zero <= 48 and good >= 648, ("%d estimates 0, %d within a factor 3 of %d"):format(zero, good, n))
+  T.ok(zero <= 48 and good >= 645, ("%d estimates 0, %d within a factor 3 of %d"):format(zero, good, n))
   local o = ALL.slot
   local sigma = 1e-4 * shapes.size(o)
   local k
