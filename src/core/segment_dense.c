@@ -61,7 +61,8 @@ static size_t boundary(const seg_section *s, const bsfit_piece *A, const bsfit_p
 /* The boundaries of the n sub-pieces with samples (idx: their places in q) on the section,
 ** into bound (unwrapped; bound[n] closes). A closed section's indices are unwrapped from
 ** one turn on, so that the boundary before the first piece, found in the turn before, is
-** not below 0. Returns 0 when a piece keeps fewer samples than its kind needs. */
+** not below 0. Returns 0 when a piece keeps fewer samples than its kind needs, or fewer
+** distinct ones (segment_internal.h: distinct; the cover's own rule for a run). */
 static int place_boundaries(const seg_section *s, const bsfit_piece *q, const size_t *idx,
                             size_t n, size_t msub, size_t k, size_t reach, size_t *bound) {
   size_t i, turn = s->closed ? msub : 0, origin = q[idx[0]].first;
@@ -83,6 +84,7 @@ static int place_boundaries(const seg_section *s, const bsfit_piece *q, const si
   for (i = 0; i < n; i++) {
     int kind = q[idx[i]].kind;
     if (bound[i + 1] < bound[i] + (kind == FREE ? 1 : s->min_len[kind])) return 0;
+    /* (after the count: distinct reads the samples of a piece of one at least) */
     if (kind != FREE &&
         distinct(s, kind, bound[i] % s->m, bound[i + 1] - bound[i]) < s->min_len[kind])
       return 0;

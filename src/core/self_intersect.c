@@ -49,17 +49,18 @@ static int adjacent(size_t i, size_t j, size_t ne, int closed) {
 ** its two sides cross 3e-4 of the period past a corner, between two of 2208 even samples. */
 #define REFINE 24
 
-/* the number of distinct knots in [a, b] where the curve may turn at an angle (multiplicity
-** >= degree); with u != NULL, REFINE parameters on either side of each, ever closer to it */
+/* the number of knots in the domain where the curve may turn (multiplicity >= degree, as
+** bsfit_knots_multiplicity counts it; a periodic curve's end is its start); with u != NULL,
+** REFINE parameters on either side of each, ever closer to it */
 static size_t corner_params(const bsfit_curve *c, double a, double b, double *u) {
-  size_t i = 0, j, nk = c->n + (size_t)c->degree + 1, found = 0;
-  double eps = 1e-14 * (b - a);
+  size_t i = 0, nk = c->n + (size_t)c->degree + 1, found = 0;
   while (i < nk) {
-    double t = c->knots[i], before, after;
-    j = i;
-    while (j < nk && c->knots[j] - t <= eps) j++;
-    if (j - i >= (size_t)c->degree && t >= a - eps && t <= b + eps && i > 0 && j < nk) {
-      before = t - c->knots[i - 1], after = c->knots[j] - t;
+    double t = c->knots[i];
+    size_t j = i;
+    while (j < nk && c->knots[j] == t) j++;
+    if (j - i >= (size_t)c->degree && t >= a && (c->periodic ? t < b : t <= b) && i > 0 &&
+        j < nk) {
+      double before = t - c->knots[i - 1], after = c->knots[j] - t;
       if (u) {
         int r;
         double h = 0.5;

@@ -331,8 +331,9 @@ end)
 -- per side at noise 1e-4 crossed itself 3e-4 of the period past a corner, between two of
 -- 2208 samples, and came out with rep.crossings 0. Of 1560 sparse sections (every outline,
 -- 3 to 6 per side, three noise levels, ten seeds) six had such a hidden loop (serif T's,
--- gears, a rounded rectangle); these three outlines are held here. The check against each
--- result samples it evenly and densely (40000 samples).
+-- gears, a rounded rectangle); these three outlines are held here. Each result is checked
+-- with 40000 samples: evenly spread alone (the old check at that density) they found all
+-- six; the check now also samples ever closer to the corners.
 T.test("sparse noisy sections: no loop hidden between the loop check's samples", function()
   local hidden, n = {}, 0
   for _, name in ipairs { "T_serif", "gear", "rrect" } do
