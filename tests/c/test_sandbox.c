@@ -414,11 +414,13 @@ static const char *const fit_run =
     "assert(C and rep.rms < 1e-3, 'fit failed')\n"
     "done = true\n";
 
-/* The fit interrupted t_fit / 3 after it starts, by another thread: the code, and
-** how long after the interrupt the call returned (seconds). */
-static double interrupted_fit(bsfit_engine *e, double t_fit) {
+/* The fit interrupted *t_fit / 3 after it starts, by another thread: how long after
+** the interrupt the call returned (seconds). A fit that ended before the interrupt (the
+** first timing was slow: a fresh machine's first touch of the memory, a busy core) is
+** not a failure: it returns NAN and makes its own time the fit's. */
+static double interrupted_fit(bsfit_engine *e, double *t_fit) {
   lua_State *L = bsfit_engine_lua(e);
-  stopper s = {e, t_fit / 3, &fit_started, 0};
+  stopper s = {e, *t_fit / 3, &fit_started, 0};
   pthread_t t;
   bsfit_err code;
   double t_end;
@@ -428,6 +430,10 @@ static double interrupted_fit(bsfit_engine *e, double t_fit) {
   code = bsfit_engine_run_string(e, fit_run, "=fit");
   t_end = now();
   assert_int_equal(pthread_join(t, NULL), 0);
+  if (code == BSFIT_OK && t_end < s.t_stop) {
+    *t_fit = fmin(*t_fit, t_end - t_started);
+    return NAN;
+  }
   assert_int_equal(code, BSFIT_EINTR);
   assert_msg_has(e, "interrupted");
   lua_getglobal(L, "done");
@@ -439,20 +445,26 @@ static double interrupted_fit(bsfit_engine *e, double t_fit) {
 /* One solver: the fit's own time, then the same fit interrupted a third of the way
 ** in. The C loop must see the flag: the call ends a small fraction of the fit's time
 ** after the interrupt, where a fit that ran to its end would take two thirds more.
-** Best of three tries, so that a busy machine's scheduling is not the measure. With
-** rerun, the same fit then runs to its end on the same engine. */
+** Best of three interrupted tries (of at most six), so that a busy machine's scheduling
+** is not the measure. With rerun, the same fit then runs to its end on the same engine. */
 static void interrupt_fit(bsfit_engine *e, const char *solver, int rerun) {
   lua_State *L = bsfit_engine_lua(e);
   double t_fit, latency = INFINITY;
-  int k;
+  int k, interrupted = 0;
   lua_pushstring(L, solver);
   lua_setglobal(L, "solver");
   assert_int_equal(bsfit_engine_run_string(e, fit_run, "=fit"), BSFIT_OK);
   t_fit = now() - t_started;
-  for (k = 0; k < 3 && !(latency < 0.05 * t_fit); k++)
-    latency = fmin(latency, interrupted_fit(e, t_fit));
+  for (k = 0; k < 6 && interrupted < 3 && !(latency < 0.05 * t_fit); k++) {
+    double l = interrupted_fit(e, &t_fit);
+    if (!isnan(l)) {
+      latency = fmin(latency, l);
+      interrupted++;
+    }
+  }
   print_message("%s fit of 1e7 points: %.1f ms; stopped %.3f ms after the interrupt\n", solver,
                 t_fit * 1e3, latency * 1e3);
+  assert_true(interrupted > 0);
   assert_true(latency < 0.1 * t_fit);
   if (rerun) assert_int_equal(bsfit_engine_run_string(e, fit_run, "=fit"), BSFIT_OK);
   still_works(e);
