@@ -1,13 +1,23 @@
 -- lua/bsfit/plot.lua
 -- The frame of a picture in data units (docs/pictures.md): an SVG whose viewBox is in
 -- the data's coordinates with y up. Data are drawn inside a group with
--- transform="scale(1,-1)", so a point (x, y) is written as it is; text is written
+-- transform="scale(1,-1)", so a point (x, y) is written as it is, less the picture's
+-- origin and in its unit (the svg element's data-origin="ox oy" and data-unit="u": x is
+-- ox + u * the number written). The origin is 0 0 unless the data lie farther from 0
+-- than 1000 times their size (renderers that draw in single precision, Skia and cairo
+-- among them, would shake the curve by pixels), then a round number near the data's
+-- centre; the unit is 1 unless the size is below 0.01 or above 1e6 (librsvg draws
+-- nothing in a viewBox of 0.001), then a power of ten near the size. Text is written
 -- outside that group at (x, -y), so it reads the right way up. Sizes meant in pixels
--- (fonts, strokes, radii, margins) are divided by the scale (pixels per data unit).
+-- (strokes, radii, margins) are divided by the scale (pixels per data unit). Text is
+-- laid out in pixels: each <text> is moved to its data position and scaled by 1/scale
+-- (a font of 0.1 data units would be hinted at 0.1 pixels by renderers such as
+-- librsvg, and its letters spaced at random).
 --
 --   local plot = require "bsfit.plot"
 --   local f = plot.frame{box = {x0, y0, x1, y1}, size = 640, right = 200, top = 40}
---   f:px(12) -- 12 pixels in data units;  f:X(x), f:Y(y) -- text coordinates
+--   f:px(12) -- 12 pixels in data units;  f:c(len) -- a length as text
+--   f:x(x), f:y(y) -- positions in the flipped group;  f:X(x), f:Y(y) -- outside it
 -- Also: the viridis colour map, nice axis ticks, number formatting, text widths.
 
 local M = {}
@@ -118,20 +128,35 @@ function M.frame(o)
   f.plot_w, f.plot_h = (b[3] - b[1]) * f.scale, (b[4] - b[2]) * f.scale
   f.width = f.left + f.plot_w + f.right
   f.height = math.max(f.top + f.plot_h + f.bottom, o.min_height or 0)
-  -- digits that keep 1/10000 of the picture's size exact, whatever the offset
   local extent = math.max(b[3] - b[1], b[4] - b[2])
-  f.dec = math.max(0, math.min(15, math.ceil(-math.log(extent, 10)) + 5))
+  f.ox, f.oy = M.origin((b[1] + b[3]) / 2, extent), M.origin((b[2] + b[4]) / 2, extent)
+  f.unit_exp = (extent < 1e-2 or extent > 1e6) and math.floor(math.log(extent, 10)) or 0
+  f.unit = 10.0 ^ f.unit_exp
+  -- digits that keep 1/10000 of the picture's size exact
+  f.dec = math.max(0, math.min(15, math.ceil(-math.log(extent / f.unit, 10)) + 5))
   return f
+end
+
+-- The origin of a picture's coordinates along one axis: 0, or for data centred at c
+-- farther than 1000 extents from 0, c rounded to a power of ten at least the extent.
+function M.origin(c, extent)
+  if math.abs(c) <= 1000 * extent then return 0 end
+  local step = 10 ^ math.ceil(math.log(extent, 10))
+  return math.floor(c / step + 0.5) * step
 end
 
 function Frame:px(p) return p / self.scale end
 
--- A coordinate as text (fixed decimals fitted to the picture's size).
-function Frame:c(v) return ("%." .. self.dec .. "f"):format(v) end
+-- A length in data units as text in the picture's unit (fixed decimals fitted to its size).
+function Frame:c(v) return ("%." .. self.dec .. "f"):format(v / self.unit) end
 
--- Text coordinates of data (x, y): outside the flipped group, y is -y.
-function Frame:X(x) return self:c(x) end
-function Frame:Y(y) return self:c(-y) end
+-- Positions of data (x, y) inside the flipped group, relative to the origin.
+function Frame:x(x) return self:c(x - self.ox) end
+function Frame:y(y) return self:c(y - self.oy) end
+
+-- Positions of data (x, y) outside the flipped group (text, legend): y is -y.
+function Frame:X(x) return self:c(x - self.ox) end
+function Frame:Y(y) return self:c(self.oy - y) end
 
 -- Data coordinates of the picture's corners (left, bottom, right, top).
 function Frame:view()
@@ -144,16 +169,26 @@ end
 function Frame:open()
   local l, _, _, t = self:view()
   return ('<svg xmlns="http://www.w3.org/2000/svg" width="%d" height="%d" viewBox="%s %s %s %s" '
-          .. 'font-family="sans-serif">')
-    :format(math.ceil(self.width), math.ceil(self.height), self:c(l), self:c(-t),
-            self:c(self:px(self.width)), self:c(self:px(self.height)))
+          .. 'data-origin="%s %s" data-unit="%s" font-family="sans-serif">')
+    :format(math.ceil(self.width), math.ceil(self.height), self:X(l), self:Y(t),
+            self:c(self:px(self.width)), self:c(self:px(self.height)),
+            M.num(self.ox, 17), M.num(self.oy, 17), ("1e%d"):format(self.unit_exp))
+end
+
+-- A white rectangle under the whole picture (outside the flipped group).
+function Frame:background()
+  local l, _, _, t = self:view()
+  return ('<rect class="background" x="%s" y="%s" width="%s" height="%s" fill="#fff"/>')
+    :format(self:X(l), self:Y(t), self:c(self:px(self.width)), self:c(self:px(self.height)))
 end
 
 -- A text element at data (x, y); size in pixels; anchor start|middle|end; extra attrs.
+-- Laid out in pixels, then scaled to data units (see the top of this file).
 function Frame:text(x, y, s, size, anchor, attrs)
-  return ('<text x="%s" y="%s" font-size="%s" text-anchor="%s"%s>%s</text>')
-    :format(self:X(x), self:Y(y), self:c(self:px(size or M.FONT)), anchor or "start",
-            attrs and (" " .. attrs) or "", M.escape(s))
+  return ('<text transform="translate(%s,%s) scale(%s)" font-size="%s" text-anchor="%s"%s>%s</text>')
+    :format(self:X(x), self:Y(y), ("%.9g"):format(1 / (self.scale * self.unit)),
+            M.num(size or M.FONT, 6), anchor or "start", attrs and (" " .. attrs) or "",
+            M.escape(s))
 end
 
 -- }======================================================================

@@ -143,13 +143,12 @@ end
 
 local function polyline(f, pts, closed, attrs)
   local t = {}
-  for i, q in ipairs(pts) do t[i] = f:c(q[1]) .. "," .. f:c(q[2]) end
+  for i, q in ipairs(pts) do t[i] = f:x(q[1]) .. "," .. f:y(q[2]) end
   return ('<%s points="%s" fill="none" %s/>'):format(closed and "polygon" or "polyline",
                                                     table.concat(t, " "), attrs)
 end
 
 local LINE = '<line x1="%s" y1="%s" x2="%s" y2="%s"/>'
-local BACKGROUND = '<rect class="background" x="%s" y="%s" width="%s" height="%s" fill="#fff"/>'
 
 -- The axes: a frame, light grid lines and tick labels (left and bottom).
 local function axes(f, out, xlabel, ylabel)
@@ -158,15 +157,15 @@ local function axes(f, out, xlabel, ylabel)
   local yt, yl = plot.ticks(f.y0, f.y1, math.max(3, f.plot_h / 80))
   out[#out + 1] = ('<g class="grid" stroke="#e4e4e4" stroke-width="%s">'):format(sw)
   for _, x in ipairs(xt) do
-    out[#out + 1] = LINE:format(f:c(x), f:c(f.y0), f:c(x), f:c(f.y1))
+    out[#out + 1] = LINE:format(f:x(x), f:y(f.y0), f:x(x), f:y(f.y1))
   end
   for _, y in ipairs(yt) do
-    out[#out + 1] = LINE:format(f:c(f.x0), f:c(y), f:c(f.x1), f:c(y))
+    out[#out + 1] = LINE:format(f:x(f.x0), f:y(y), f:x(f.x1), f:y(y))
   end
   out[#out + 1] = "</g>"
   out[#out + 1] = ('<rect class="axes" x="%s" y="%s" width="%s" height="%s" fill="none" '
                    .. 'stroke="#555" stroke-width="%s"/>')
-    :format(f:c(f.x0), f:c(f.y0), f:c(f.x1 - f.x0), f:c(f.y1 - f.y0), sw)
+    :format(f:x(f.x0), f:y(f.y0), f:c(f.x1 - f.x0), f:c(f.y1 - f.y0), sw)
   return function(texts) -- tick labels go outside the flipped group
     texts[#texts + 1] = '<g class="ticks" fill="#333">'
     for i, x in ipairs(xt) do
@@ -382,11 +381,11 @@ local function draw_points(f, o, d, out)
     if d.cut and o.weights[i] < d.cut then
       out[#out + 1] = ('<circle class="down" cx="%s" cy="%s" r="%s" fill="none" stroke="#888" '
                        .. 'stroke-width="%s"/>')
-        :format(f:c(x), f:c(y), r, sw)
+        :format(f:x(x), f:y(y), r, sw)
     else
       local res = o.residuals and o.residuals[i]
       local col = res and plot.viridis(d.rmax > 0 and res / d.rmax or 0) or plot.viridis(0.5)
-      out[#out + 1] = ('<circle cx="%s" cy="%s" r="%s" fill="%s"/>'):format(f:c(x), f:c(y), r, col)
+      out[#out + 1] = ('<circle cx="%s" cy="%s" r="%s" fill="%s"/>'):format(f:x(x), f:y(y), r, col)
     end
   end
   out[#out + 1] = "</g>"
@@ -399,7 +398,7 @@ local function draw_marks(f, o, d, out)
   local P, h = o.points, f:px(5)
   local function diamond(x, y)
     out[#out + 1] = ('<polygon class="corner" points="%s,%s %s,%s %s,%s %s,%s" fill="#000"/>')
-      :format(f:c(x), f:c(y + h), f:c(x + h), f:c(y), f:c(x), f:c(y - h), f:c(x - h), f:c(y))
+      :format(f:x(x), f:y(y + h), f:x(x + h), f:y(y), f:x(x), f:y(y - h), f:x(x - h), f:y(y))
   end
   if with_joins(o) then
     for _, pc in ipairs(o.pieces) do
@@ -409,7 +408,7 @@ local function draw_marks(f, o, d, out)
       elseif pc.join == "tangent" and #o.pieces > 1 then
         out[#out + 1] = ('<circle class="tangent" cx="%s" cy="%s" r="%s" fill="#fff" '
                          .. 'stroke="#555" stroke-width="%s"/>')
-          :format(f:c(x), f:c(y), f:c(f:px(3)), f:c(f:px(1)))
+          :format(f:x(x), f:y(y), f:c(f:px(3)), f:c(f:px(1)))
       end
     end
   else
@@ -419,7 +418,7 @@ local function draw_marks(f, o, d, out)
     local x, y = d.to2(P:get(o.start_index))
     out[#out + 1] = ('<rect class="start" x="%s" y="%s" width="%s" height="%s" fill="none" '
                      .. 'stroke="#009e73" stroke-width="%s"/>')
-      :format(f:c(x - h), f:c(y - h), f:c(2 * h), f:c(2 * h), f:c(f:px(2)))
+      :format(f:x(x - h), f:y(y - h), f:c(2 * h), f:c(2 * h), f:c(f:px(2)))
   end
 end
 
@@ -431,7 +430,7 @@ local function draw_max(f, o, d, out, texts)
   local orange, fs = "#d55e00", plot.FONT
   out[#out + 1] = ('<circle class="max" cx="%s" cy="%s" r="%s" fill="none" stroke="%s" '
                    .. 'stroke-width="%s"/>')
-    :format(f:c(x), f:c(y), f:c(f:px(7)), orange, f:c(f:px(2)))
+    :format(f:x(x), f:y(y), f:c(f:px(7)), orange, f:c(f:px(2)))
   local down = d.cut and o.weights[o.max_index] < d.cut
   local value = o.max or (o.residuals and o.residuals[o.max_index]) or 0
   local label = ("max %s at point %d%s"):format(plot.num(value), o.max_index,
@@ -443,7 +442,7 @@ local function draw_max(f, o, d, out, texts)
   local ly = f.y1 + f:px(8)
   out[#out + 1] = ('<line class="max-leader" x1="%s" y1="%s" x2="%s" y2="%s" stroke="%s" '
                    .. 'stroke-width="%s" stroke-dasharray="%s"/>')
-    :format(f:c(x), f:c(y + f:px(7)), f:c(math.max(lx, math.min(x, lx + w))), f:c(ly - f:px(2)),
+    :format(f:x(x), f:y(y + f:px(7)), f:x(math.max(lx, math.min(x, lx + w))), f:y(ly - f:px(2)),
             orange, f:c(f:px(1)), f:c(f:px(3)))
   texts[#texts + 1] = f:text(lx, ly, label, fs, "start",
                              ('class="max-label" fill="%s" font-weight="bold"'):format(orange))
@@ -508,8 +507,7 @@ function M.section(o)
   local entries = legend_entries(o, d)
   local f = layout(o, d, entries)
   local out, texts = { f:open(), gradient() }, {}
-  local l, _, _, t = f:view()
-  out[#out + 1] = BACKGROUND:format(f:c(l), f:c(-t), f:c(f:px(f.width)), f:c(f:px(f.height)))
+  out[#out + 1] = f:background()
   out[#out + 1] = '<g class="data" transform="scale(1,-1)">'
   local flat = o.points:dim() == 3
   local labels = axes(f, out, flat and "u (in the plane)" or "x", flat and "v" or "y")
@@ -551,9 +549,7 @@ function M.curves(o)
   local entries = {}
   for k, c in ipairs(o.curves) do entries[k] = { "line:" .. k, c.label } end
   local f = layout({ size = o.size, title = o.title, subtitle = o.subtitle }, d, entries)
-  local l, _, _, t = f:view()
-  local bg = BACKGROUND:format(f:c(l), f:c(-t), f:c(f:px(f.width)), f:c(f:px(f.height)))
-  local out = { f:open(), bg,
+  local out = { f:open(), f:background(),
     '<g class="data" transform="scale(1,-1)">' }
   local labels = axes(f, out, "x", "y")
   local function style(c)

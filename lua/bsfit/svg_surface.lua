@@ -94,7 +94,7 @@ local function runs(f, pts, want)
   for i, q in ipairs(pts) do
     local take = q[3] == want or (pts[i - 1] and pts[i - 1][3] == want)
     if take then
-      d[#d + 1] = (open and "L" or "M") .. f:c(q[1]) .. " " .. f:c(q[2])
+      d[#d + 1] = (open and "L" or "M") .. f:x(q[1]) .. " " .. f:y(q[2])
       open = true
     else
       open = false
@@ -191,10 +191,7 @@ function M.picture(o)
   local L, box = lines(o, V)
   local f = plot.frame { box = box, size = o.size or 640, left = 16, right = 210, top = 70,
                          bottom = 3 * plot.SMALL + 40, min_height = 200 }
-  local l, _, _, t = f:view()
-  local out = { f:open(),
-    ('<rect class="background" x="%s" y="%s" width="%s" height="%s" fill="#fff"/>')
-      :format(f:c(l), f:c(-t), f:c(f:px(f.width)), f:c(f:px(f.height))),
+  local out = { f:open(), f:background(),
     '<g class="data" transform="scale(1,-1)" fill="none" stroke-linejoin="round">' }
   for _, pass in ipairs { false, true } do -- hidden parts first, under the visible ones
     for _, line in ipairs(L) do
@@ -208,6 +205,7 @@ function M.picture(o)
   out[#out + 1] = "</g>"
   triad(f, V, out)
   svg.scale_bar(f, out)
+  local l, _, _, t = f:view()
   local x, y = l + f:px(8), t - f:px(24)
   out[#out + 1] = f:text(x, y, o.title or "surface", 16, "start", 'font-weight="bold"')
   out[#out + 1] = f:text(x, y - f:px(16), o.subtitle or ("oblique parallel view: azimuth %g°, "

@@ -1,6 +1,8 @@
 -- test_pictures.lua: bsfit.svg's section picture and bsfit.overview's page, checked
 -- against the data they draw (computed here independently): the viewBox holds every
--- point in data units with y up, the worst residual's label lies inside the view box,
+-- point in data units with y up (less a round origin, in a power-of-ten unit, when the
+-- data are far from 0 or of extreme size), text is laid out in pixels, the worst
+-- residual's label lies inside the view box,
 -- down-weighted points (the strategies' rule: weight < 0.1 x median) are the hollow
 -- ones, colours follow the residuals, a 3D section's plane drawing keeps distances,
 -- and a huge section gives a bounded picture.
@@ -39,35 +41,86 @@ local function numbers(s)
   return t
 end
 
+-- A picture's map from the numbers written to data coordinates: x = ox + unit * v
+-- (svg attributes data-origin, data-unit), y = oy + unit * v in the flipped data group
+-- and oy - unit * v outside it.
+local function picture_map(text)
+  local o = numbers(text:match('data%-origin="([^"]*)"'))
+  local unit = tonumber(text:match('data%-unit="([^"]*)"'))
+  return { ox = o[1], oy = o[2], unit = unit,
+           x = function(v) return o[1] + unit * v end,
+           y = function(v) return o[2] + unit * v end,
+           Y = function(v) return o[2] - unit * v end }
+end
+
 -- viewBox as (left, bottom, right, top) in data coordinates (y up).
 local function view(text)
-  local v = numbers(text:match('viewBox="([^"]*)"'))
-  return v[1], -(v[2] + v[4]), v[1] + v[3], -v[2]
+  local v, map = numbers(text:match('viewBox="([^"]*)"')), picture_map(text)
+  return map.x(v[1]), map.Y(v[2] + v[4]), map.x(v[1] + v[3]), map.Y(v[2])
+end
+
+-- Each text element: its data position, font size in data units and in the layout.
+local function texts_of(text)
+  local t, map = {}, picture_map(text)
+  for a, b, k, fs, rest in text:gmatch('<text transform="translate%(([^,]*),([^)]*)%) scale%(([^)]*)%)" '
+                                       .. 'font%-size="([^"]*)"([^>]*)>') do
+    t[#t + 1] = { x = map.x(tonumber(a)), y = map.Y(tonumber(b)), layout = tonumber(fs),
+                  size = tonumber(fs) * tonumber(k) * map.unit, attrs = rest }
+  end
+  return t
 end
 
 T.test("viewBox in data units holds every point; y up; legend, colour bar, max label inside", function()
   local rand = rng(7)
-  for trial = 1, 12 do
+  for trial = 1, 24 do
     local m = 20 + math.floor(rand() * 400)
-    local r = 10 ^ (rand() * 8 - 4) -- sizes from 1e-4 to 1e4
-    local cx, cy = (rand() - 0.5) * 1e3 * r, (rand() - 0.5) * 10 * r
+    local r = 10 ^ (rand() * 14 - 6) -- sizes from 1e-6 to 1e8
+    -- centres near 0 and, every other trial, up to 1e7 sizes away (survey coordinates)
+    local far = trial % 2 == 0 and 10 ^ (rand() * 7) or 1
+    local cx, cy = (rand() - 0.5) * 1e3 * r * far, (rand() - 0.5) * 10 * r * far
     local P, res = section(m, r, cx, cy, 0.05 * r * rand(), rand)
     local imax = 1
     for i = 2, m do if res[i] > res[imax] then imax = i end end
     local text = svg.section { points = P, samples = P, residuals = res, max_index = imax,
                                max = res[imax], closed = true, title = "s" .. trial }
     local l, b, rr, t = view(text)
+    local map = picture_map(text)
+    local drawn = {}
+    for x, y in text:gmatch('<circle cx="([^"]*)" cy="([^"]*)" r="[^"]*" fill="#') do
+      drawn[#drawn + 1] = { tonumber(x), tonumber(y) }
+    end
+    T.ok(#drawn >= m, ("trial %d: %d points drawn"):format(trial, #drawn))
+    local vb = numbers(text:match('viewBox="([^"]*)"'))
+    local span = math.max(vb[3], vb[4])
+    -- renderers draw in single precision and librsvg nothing in a tiny view box: the
+    -- numbers written are of the picture's size, whatever the data's offset and scale
+    T.ok(span >= 0.01 and span <= 1e7, ("trial %d: view box %g wide"):format(trial, span))
     for i = 1, m do
       local x, y = P:get(i)
       T.ok(x > l and x < rr and y > b and y < t, ("trial %d: point %d inside the view box"):format(trial, i))
+      local q = drawn[i]
+      T.ok(math.abs(q[1]) <= 2000 * span and math.abs(q[2]) <= 2000 * span,
+           ("trial %d: point %d written as a number of the picture's size"):format(trial, i))
+      T.ok(math.abs(map.x(q[1]) - x) <= 1e-4 * r and math.abs(map.y(q[2]) - y) <= 1e-4 * r,
+           ("trial %d: point %d drawn at its coordinates"):format(trial, i))
     end
     T.ok(text:find('transform="scale(1,-1)"', 1, true), "data drawn in a y-up group")
     T.ok(text:find('class="legend"', 1, true) and text:find('class="colorbar"', 1, true))
     T.ok(text:find('url(#viridis)', 1, true), "the colour bar is the viridis gradient")
-    -- the label: its box (estimated text width) inside the view box; text y is -data y
-    local lx, ly, fs, label = text:match('<text x="([^"]*)" y="([^"]*)" font%-size="([^"]*)"[^>]*class="max%-label"[^>]*>([^<]*)<')
+    -- text is laid out in pixels (a font of 1e-3 units is hinted to garbage), then scaled
+    local all = texts_of(text)
+    local _, ntext = text:gsub("<text ", "")
+    T.eq(#all, ntext, "every text element moved and scaled to its place")
+    for _, e in ipairs(all) do
+      T.ok(e.layout >= 8 and e.layout <= 20, ("trial %d: text laid out at %g px"):format(trial, e.layout))
+    end
+    -- the label: its box (estimated text width) inside the view box
+    local lx, ly, fs, label
+    for _, e in ipairs(all) do
+      if e.attrs:find('class="max-label"', 1, true) then lx, ly, fs = e.x, e.y, e.size end
+    end
+    label = text:match('class="max%-label"[^>]*>([^<]*)<')
     T.ok(label and label:find(plot.num(res[imax]), 1, true), "the label gives the max value")
-    lx, ly, fs = tonumber(lx), -tonumber(ly), tonumber(fs)
     local w = #label * 0.62 * fs
     T.ok(lx >= l and lx + w <= rr and ly - 0.3 * fs >= b and ly + fs <= t,
          ("trial %d: max label inside the view box"):format(trial))
@@ -120,10 +173,11 @@ T.test("3D: drawn in the best-fit plane, distances kept, said so", function()
     end
     local drawn = table.move(pts, 1, #pts - 1, 1, {}) -- the legend's sample point comes last
     T.eq(#drawn, m, "every point drawn")
-    local cx, cy = 0, 0
+    local cx, cy, unit = 0, 0, picture_map(text).unit
     for _, p in ipairs(drawn) do cx, cy = cx + p[1] / m, cy + p[2] / m end
     for _, p in ipairs(drawn) do
-      T.near(math.sqrt((p[1] - cx) ^ 2 + (p[2] - cy) ^ 2), R, 1e-4 * R + 10 ^ -8, "radius kept")
+      T.near(unit * math.sqrt((p[1] - cx) ^ 2 + (p[2] - cy) ^ 2), R, 1e-4 * R + 10 ^ -8,
+             "radius kept")
     end
   end
 end)

@@ -5,7 +5,8 @@
 # every point (y up: the data group is flipped, the view box's y is -top), the legend and
 # the colour bar are there, the worst residual's label lies inside the view box. A 3D
 # section (a tilted noisy ellipse) says it is drawn in its best-fit plane. The overview
-# page links every picture. Also bsfit filter's picture: before and after both stroked.
+# page links every picture. One outline near 0, in survey coordinates and tiny: the same
+# curve drawn. Also bsfit filter's picture: before and after both stroked.
 # usage: bash test_pictures.sh <path-to-bsfit> <source-dir>
 BSFIT=${1:?usage: test_pictures.sh BSFIT SOURCE_DIR}
 SRC=${2:?usage: test_pictures.sh BSFIT SOURCE_DIR}
@@ -33,6 +34,19 @@ with open(sys.argv[1], "w") as f:
         a, b = u / math.sqrt(3), v / math.sqrt(2)
         f.write("%.12g,%.12g,%.12g\n" % (5 + a + b, -3 + a - b, 40 + a))
 EOF
+# One outline three times: near 0 (size 12), in survey coordinates (UTM-like, 4e6 from 0)
+# and of size 6e-4 a million units from 0: the same picture but for its labels.
+/usr/bin/python3 - "$TMP/in" << 'EOF'
+import math, sys
+for name, (cx, cy), s in [("plain", (0, 0), 1), ("survey", (512345.6, 4123456.7), 1),
+                          ("micro", (1e6, -3e5), 5e-5)]:
+    with open("%s/%s.csv" % (sys.argv[1], name), "w") as f:
+        f.write("x,y\n")
+        for k in range(60):
+            t = 2 * math.pi * k / 60
+            r = 6 * (1 + 0.15 * math.cos(3 * t))
+            f.write("%.17g,%.17g\n" % (cx + s * r * math.cos(t), cy + s * 0.6 * r * math.sin(t)))
+EOF
 "$BSFIT" reconstruct "$TMP/in" -o "$TMP/out" -q 2> "$TMP/err"
 check "demo run with a 3D section: exit 0" test $? -eq 0
 
@@ -47,7 +61,12 @@ svg, data, summary = sys.argv[1:4]
 NS = "{http://www.w3.org/2000/svg}"
 root = ET.parse(svg).getroot()
 vb = [float(v) for v in root.get("viewBox").split()]
-left, top, right, bottom = vb[0], -vb[1], vb[0] + vb[2], -(vb[1] + vb[3])  # data y up
+# the numbers written are the data's less an origin, in a unit: x = ox + unit * v
+ox, oy = (float(v) for v in root.get("data-origin").split())
+unit = 10.0 ** int(root.get("data-unit")[2:])
+X = lambda v: ox + unit * v
+Y = lambda v: oy - unit * v  # outside the flipped data group
+left, top, right, bottom = X(vb[0]), Y(vb[1]), X(vb[0] + vb[2]), Y(vb[1] + vb[3])  # data y up
 rows = list(csv.DictReader(open(data)))
 three_d = "z" in rows[0]
 errors = []
@@ -63,6 +82,9 @@ need(groups.get("data") is not None and groups["data"].get("transform") == "scal
 need("legend" in groups and "colorbar" in groups, "legend and colour bar")
 need(any(s.get("fill") == "url(#viridis)" for s in root.iter(NS + "rect")), "the colour bar's gradient")
 texts = "".join("".join(t.itertext()) for t in root.iter(NS + "text"))
+# text is laid out in pixels and scaled to its place (hinted at 0.1 px it is garbled)
+need(all(8 <= float(t.get("font-size")) <= 20 for t in root.iter(NS + "text")),
+     "every text laid out at 8 to 20 pixels")
 if not three_d:
     # the viewBox is in data units: it holds every point, and not much more than them
     xs = [float(r["x"]) for r in rows]; ys = [float(r["y"]) for r in rows]
@@ -74,7 +96,12 @@ if not three_d:
     drawn = {(c.get("cx"), c.get("cy")) for c in groups["points"].iter(NS + "circle")}
     dec = len(next(iter(drawn))[0].split(".")[1])
     fmt = "%%.%df" % dec
-    need(all((fmt % x, fmt % y) in drawn for x, y in zip(xs, ys)), "every point drawn at its coordinates")
+    need(all((fmt % ((x - ox) / unit), fmt % ((y - oy) / unit)) in drawn for x, y in zip(xs, ys)),
+         "every point drawn at its coordinates")
+    # single-precision renderers and librsvg's smallest view box: numbers of the picture's size
+    need(0.01 <= max(vb[2], vb[3]) <= 1e7, "the view box is 0.01 to 1e7 wide: %g" % vb[2])
+    need(all(abs(float(v)) <= 2000 * max(vb[2], vb[3]) for c in drawn for v in c),
+         "every point written as a number of the picture's size")
 else:
     need("best-fit plane" in texts, "the 3D section says it is drawn in its best-fit plane")
 # the worst residual: labelled with its value, inside the view box
@@ -83,7 +110,9 @@ label = [t for t in root.iter(NS + "text") if t.get("class") == "max-label"]
 need(len(label) == 1, "one max label")
 if label:
     t = label[0]
-    x, y, fs = float(t.get("x")), -float(t.get("y")), float(t.get("font-size"))
+    m = re.fullmatch(r"translate\(([^,]*),([^)]*)\) scale\(([^)]*)\)", t.get("transform"))
+    x, y = X(float(m.group(1))), Y(float(m.group(2)))
+    fs = float(t.get("font-size")) * float(m.group(3)) * unit  # in data units
     width = len(t.text) * 0.62 * fs
     need(x >= left and x + width <= right and y - 0.3 * fs >= bottom and y + fs <= top,
          "the max label inside the view box")
@@ -103,6 +132,48 @@ svgs = {f for f in os.listdir(sys.argv[2]) if f.endswith(".svg")}
 sys.exit(0 if links == svgs and "<table>" in html and "<script>" in html else 1)
 EOF
 check "index.html: a table linking every picture, sort script inline" test $? -eq 0
+
+# far from 0 and tiny: drawn as near 0 (a single-precision renderer shakes a curve written
+# as 4e6-sized numbers by pixels; librsvg draws nothing in a view box of 0.001). The red
+# pixels of the curve (#d62728), counted in rsvg-convert's PNGs, decoded here.
+/usr/bin/python3 - "$TMP/plain.png" "$TMP/survey.png" "$TMP/micro.png" << 'EOF'
+import struct, sys, zlib
+def red_pixels(path):
+    data = open(path, "rb").read()
+    pos, idat, w = 8, b"", 0
+    while pos < len(data):
+        n, kind = struct.unpack(">I4s", data[pos:pos + 8])
+        body = data[pos + 8:pos + 8 + n]
+        if kind == b"IHDR":
+            w, h, depth, colour = struct.unpack(">IIBB", body[:10])
+            assert depth == 8 and colour == 6, "rsvg-convert writes 8-bit RGBA"
+        elif kind == b"IDAT":
+            idat += body
+        pos += 12 + n
+    raw, bpp, stride = zlib.decompress(idat), 4, 4 * w
+    prev, count, i = bytearray(stride), 0, 0
+    for _ in range(h):  # undo the PNG row filters (none, sub, up, average, Paeth)
+        f, row = raw[i], bytearray(raw[i + 1:i + 1 + stride])
+        i += 1 + stride
+        for x in range(stride):
+            a = row[x - bpp] if x >= bpp else 0
+            b, c = prev[x], prev[x - bpp] if x >= bpp else 0
+            if f == 1: row[x] = (row[x] + a) & 255
+            elif f == 2: row[x] = (row[x] + b) & 255
+            elif f == 3: row[x] = (row[x] + (a + b) // 2) & 255
+            elif f == 4:
+                p = a + b - c
+                pa, pb, pc = abs(p - a), abs(p - b), abs(p - c)
+                row[x] = (row[x] + (a if pa <= pb and pa <= pc else b if pb <= pc else c)) & 255
+        count += sum(1 for x in range(0, stride, 4)
+                     if abs(row[x] - 214) < 30 and row[x + 1] < 90 and row[x + 2] < 90 and row[x + 3] > 200)
+        prev = row
+    return count
+ref, survey, micro = (red_pixels(p) for p in sys.argv[1:4])
+print("# red curve pixels: plain %d, survey %d, micro %d" % (ref, survey, micro))
+sys.exit(0 if ref > 1000 and all(abs(c - ref) <= 0.03 * ref for c in (survey, micro)) else 1)
+EOF
+check "survey coordinates and a tiny section: the curve drawn as near 0" test $? -eq 0
 
 # --polygon: auto draws it up to 60 control points, on and off force it
 cam_cp=$(awk -F, '$1 == "cam" {print $4}' "$TMP/out/summary.csv")

@@ -56,7 +56,7 @@ local function picture(result, samples)
       pts[k] = { x, y }
       x0, y0, x1, y1 = math.min(x0, x), math.min(y0, y), math.max(x1, x), math.max(y1, y)
     end
-    paths[i] = { pts = pts, slice = c.slice.index }
+    paths[i] = { pts = pts, slice = c.slice.index, closed = c.curve:is_periodic() }
   end
   local size = math.max(x1 - x0, y1 - y0, 1e-300)
   local scale, out = 760 / size, {}
@@ -68,9 +68,9 @@ local function picture(result, samples)
       d[k] = ("%.2f,%.2f"):format(20 + (q[1] - x0) * scale, 780 - (q[2] - y0) * scale)
     end
     local hue = (p.slice * 47) % 360
-    out[#out + 1] = ('<polyline fill="none" stroke="hsl(%d,70%%,40%%)" stroke-width="1" '
-                     .. 'points="%s"/>')
-      :format(hue, table.concat(d, " "))
+    -- a periodic curve's samples cover [a, b): a polyline would leave its last chord out
+    out[#out + 1] = ('<%s fill="none" stroke="hsl(%d,70%%,40%%)" stroke-width="1" points="%s"/>')
+      :format(p.closed and "polygon" or "polyline", hue, table.concat(d, " "))
   end
   out[#out + 1] = "</svg>\n"
   return table.concat(out, "\n")
