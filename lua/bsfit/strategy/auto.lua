@@ -15,13 +15,14 @@
 --            section: exactly, or within the noise they show (bsfit.strategy.sharp);
 --            {} otherwise. When it finds them, `assemble` makes the curve and the
 --            smooth-fit steps below (params .. fit) stand aside
+--   (ends, sigma and segment read the trusted points only: weight >= trust x median)
 --   params   chord parameters over the trusted points (weight >= trust x median), on
 --            anchors where samples crowd closer than the noise (bsfit.strategy.anchors)
 --   weights  the file's weights (point_weights), else 1
 --   corners  sharp corners (bs.geom.corners): triple knots, the spans beside them kept
 --            long enough to read the sides' directions through the noise
---   count    the search: counts grow geometrically until the weighted RMS distance
---            reaches the noise level (or a step buys no more than fitting noise would);
+--   count    the search: counts grow geometrically until the weighted RMS distance of
+--            the trusted points reaches the noise level (or a step buys no more than fitting noise would);
 --            `tol` asks for a maximum distance instead
 --   fit      the final fit: `correct` rounds of parameter correction (foot points)
 --   assemble the one curve of the pieces: exact lines and arcs, fitted free runs, G1 where
@@ -236,13 +237,18 @@ end
 -- all three are local or statistical, and the fits themselves still use every point.
 local SUBSAMPLE = 5000
 
+-- every s-th point of P (s = ceil(#P / SUBSAMPLE)), or nil when P is not larger
+local function thinned(P)
+  if #P <= SUBSAMPLE then return nil end
+  local t = {}
+  for i = 1, #P, math.ceil(#P / SUBSAMPLE) do t[#t + 1] = { P:get(i) } end
+  return bs.points.new(t)
+end
+
 -- ctx.sub = {P = Points, stride = s, u = its parameters (set later)} when #P > SUBSAMPLE
 local function subsample(ctx, P)
   if ctx.sub ~= nil or #P <= SUBSAMPLE then return ctx.sub end
-  local s = math.ceil(#P / SUBSAMPLE)
-  local t = {}
-  for i = 1, #P, s do t[#t + 1] = { P:get(i) } end
-  ctx.sub = { P = bs.points.new(t), stride = s }
+  ctx.sub = { P = thinned(P), stride = math.ceil(#P / SUBSAMPLE) }
   return ctx.sub
 end
 
@@ -301,15 +307,37 @@ end
 -- =======================================================================
 
 -- The pieces of exact data (bs.geom.segment at sigma = 0), or nil. A large section is
--- screened on its subsample first: noisy data has no exact runs.
-local function exact_pieces(P, ctx)
-  local pieces, sub = ctx.cache.exact_pieces, subsample(ctx, P)
+-- screened on its subsample `sub` first: noisy data has no exact runs. `pieces`: the
+-- segmentation already made (by the ends step), if any.
+local function exact_pieces(P, ctx, sub, pieces)
   if not pieces and sub then
-    local screen = common.ok("segmentation", bs.geom.segment(sub.P, { closed = closed(ctx) }))
-    if not sharp.has_features(screen, #sub.P) then return nil end
+    local screen = common.ok("segmentation", bs.geom.segment(sub, { closed = closed(ctx) }))
+    if not sharp.has_features(screen, #sub) then return nil end
   end
   pieces = pieces or common.ok("segmentation", bs.geom.segment(P, { closed = closed(ctx) }))
   return sharp.has_features(pieces, #P) and pieces or nil
+end
+
+-- The pieces of the trusted points t.points alone (down-weighted points are no samples of
+-- a line or an arc), given back on all of P (sharp.spread); the free runs are then fitted
+-- to every point with its weight. {} when the trusted points make no pieces.
+local function trusted_pieces(P, ctx, t)
+  if not t.points or t.n < 6 then return {} end
+  local Q, idx, j = t.points, {}, 0
+  for i = 1, #P do if not t.isout[i] then j = j + 1; idx[j] = i end end
+  local pieces = exact_pieces(Q, ctx, thinned(Q))
+  if pieces then ctx.segment_sigma = 0
+  else
+    local why, found
+    pieces, why, found = noisy.find(Q, ctx.sigma, closed(ctx))
+    ctx.sharp_rejected = why
+    if found.candidate then
+      ctx.sharp_candidate = { sigma = found.candidate.sigma,
+        pieces = sharp.spread(found.candidate.pieces, idx, #P, closed(ctx)) }
+    end
+    if pieces then ctx.segment_sigma = found.sigma end
+  end
+  return pieces and sharp.spread(pieces, idx, #P, closed(ctx)) or {}
 end
 
 -- Lines, arcs and free runs (bs.geom.segment), when lines and arcs explain the section:
@@ -320,10 +348,13 @@ end
 --     corners are confirmed, their one curve stays within the noise).
 -- Returns the pieces, or {} (one smooth curve).
 function steps.segment(P, ctx)
-  -- down-weighted points and Huber reweighting ask for a fit that discounts samples: the
-  -- pieces follow every sample they hold, so such sections take the smooth path
-  if P:dim() ~= 2 or #P < 6 or ctx.settings.robust or common.trusted(ctx) then return {} end
-  local exact = exact_pieces(P, ctx)
+  -- Huber reweighting asks for a fit that discounts samples by their distance: the pieces
+  -- follow every sample they hold, so such sections take the smooth path
+  if P:dim() ~= 2 or #P < 6 or ctx.settings.robust then return {} end
+  local t = common.trusted(ctx)
+  if t then return trusted_pieces(P, ctx, t) end
+  local sub = subsample(ctx, P)
+  local exact = exact_pieces(P, ctx, sub and sub.P, ctx.cache.exact_pieces)
   if exact then ctx.segment_sigma = 0; return exact end
   local pieces, why, found = noisy.find(P, ctx.sigma, closed(ctx))
   ctx.sharp_rejected, ctx.sharp_candidate = why, found.candidate -- for the loops step
@@ -379,6 +410,9 @@ function steps.ends(P, ctx)
   if c ~= "auto" then
     error("bad argument #2 to 'run' (option 'closed' must be true, false or \"auto\")", 0)
   end
+  -- the trusted points' ends (a down-weighted outlier last is not where the outline stops)
+  local t, all_points = common.trusted(ctx, P), P
+  if t and t.points and t.n >= 6 then P = t.points end
   local m = #P
   local function step(i, j)
     local a, b, d2 = { P:get(i) }, { P:get(j) }, 0
@@ -408,7 +442,7 @@ function steps.ends(P, ctx)
     local pieces, exact = sharp.closing_pieces(P, gap)
     if pieces then
       closed_, clear = true, true
-      if exact then ctx.cache.exact_pieces = pieces end
+      if exact and P == all_points then ctx.cache.exact_pieces = pieces end
     end
   end
   ctx.settings.closed = closed_
@@ -422,8 +456,11 @@ end
 
 function steps.sigma(P, ctx)
   if #P < 6 then return 0 end
-  local sub = subsample(ctx, P)
-  local sigma, msg, code = bs.geom.noise_sigma(sub and sub.P or P, { closed = closed(ctx) })
+  -- the noise of the trusted points (a gross outlier of weight 1e-3 is not noise)
+  local t, sub = common.trusted(ctx), subsample(ctx, P)
+  local Q = t and t.points and t.n >= 6 and t.points or nil
+  Q = Q and (thinned(Q) or Q) or (sub and sub.P or P)
+  local sigma, msg, code = bs.geom.noise_sigma(Q, { closed = closed(ctx) })
   if not sigma and code == "EDEGENERATE" then
     -- too few distinct points to estimate from (6 samples of a circle, repeats): they are
     -- followed as exact data, and the report says so
@@ -541,6 +578,24 @@ function size_of(P)
   return size
 end
 
+-- The weights the count search measures its fits by: the trusted points' own, the others
+-- 0 (a gross outlier of weight 1e-2 a tenth of the size off outweighs the noise of a
+-- hundred samples, and the search would add control points to reach it). w: the weights
+-- of all points, or of every stride-th (a large section's subsample).
+local function measure_weights(ctx, w, stride)
+  local t = common.trusted(ctx)
+  if not t then return w end
+  ctx.cache.measure_weights = ctx.cache.measure_weights or {}
+  local c = ctx.cache.measure_weights[stride]
+  if c and c.of == w then return c.w end
+  local v = w:copy()
+  for _, i in ipairs(t.out) do
+    if (i - 1) % stride == 0 then v:set((i - 1) // stride + 1, 0) end
+  end
+  ctx.cache.measure_weights[stride] = { of = w, w = v }
+  return v
+end
+
 function steps.count(P, ctx)
   if sharp_path(ctx) then return 0 end -- the assemble step's
   local m = #P
@@ -550,6 +605,7 @@ function steps.count(P, ctx)
   local tries, best, chosen, stalls, prev = {}, nil, nil, 0, nil
   while true do
     local C, u, d, N, wm, mfit = fit_corrected(ctx, P, n, ctx.sub and 0 or 1, ctx.sub ~= nil)
+    wm = measure_weights(ctx, wm, #wm == #P and 1 or ctx.sub.stride)
     local rms, max = stats(d, wm, ctx.settings.robust and ctx.settings.huber * math.max(sigma, 1e-12))
     local fit = { curve = C, params = u, distances = d, count = N, rms = rms, max = max,
                   rss = #d * rms * rms }
@@ -593,13 +649,19 @@ function steps.fit(P, ctx)
   return C
 end
 
+-- The options of sharp.assemble: the free runs fitted to the trusted points with their
+-- weights, at noise level sigma.
+local function assembly(ctx, sigma)
+  local pw, t = ctx.settings.point_weights, common.trusted(ctx)
+  return { closed = closed(ctx), sigma = sigma or 0, weights = pw and as_table(pw) or nil,
+           skip = t and t.isout }
+end
+
 -- The one curve of the pieces (bsfit.strategy.sharp): exact lines and arcs, free runs
 -- fitted between them, joined; false when the section is fitted as one smooth curve.
 function steps.assemble(P, ctx)
   if not sharp_path(ctx) then return false end
-  local pw = ctx.settings.point_weights
-  local C = ctx.sharp_curve or sharp.assemble(P, ctx.segment, {
-    closed = closed(ctx), sigma = ctx.segment_sigma or 0, weights = pw and as_table(pw) or nil })
+  local C = ctx.sharp_curve or sharp.assemble(P, ctx.segment, assembly(ctx, ctx.segment_sigma))
   ctx.count = C:distinct()
   return C
 end
@@ -632,7 +694,7 @@ local function loop_free_pieces(P, ctx, k)
   local alt = ctx.sharp_candidate
   if sharp.degenerate(alt.pieces) or #alt.pieces < 2 then return nil end
   for _, p in ipairs(alt.pieces) do if p.kind == "free" and p.count == 0 then return nil end end
-  local C = sharp.assemble(P, alt.pieces, { closed = closed(ctx), sigma = alt.sigma })
+  local C = sharp.assemble(P, alt.pieces, assembly(ctx, alt.sigma))
   if bs.geom.self_intersections(C, k) > 0 then return nil end
   if sharp.distances(C, P, alt.pieces):max() > 6 * alt.sigma then return nil end
   ctx.segment, ctx.segment_sigma, ctx.curve = alt.pieces, alt.sigma, C

@@ -20,13 +20,16 @@ local M = {}
 
 local function dist(a, b) return math.sqrt((a[1] - b[1]) ^ 2 + (a[2] - b[2]) ^ 2) end
 
--- the samples of a piece, as a Lua array of {x, y}, and their weights
-local function piece_samples(P, p, w)
+-- the samples of a piece, as a Lua array of {x, y}, and their weights; those whose index
+-- is a key of `skip` left out
+local function piece_samples(P, p, w, skip)
   local m, q, ww = #P, {}, {}
   for k = 0, p.count - 1 do
     local i = (p.first - 1 + k) % m + 1
-    q[#q + 1] = { P:get(i) }
-    ww[#ww + 1] = w and w[i] or 1
+    if not (skip and skip[i]) then
+      q[#q + 1] = { P:get(i) }
+      ww[#ww + 1] = w and w[i] or 1
+    end
   end
   return q, ww
 end
@@ -105,7 +108,7 @@ end
 -- Exact data: interpolated; noisy: the fewest control points that explain its samples as
 -- noise would (explains_as_noise), the tangents no longer than free_length.
 local function free_run(P, p, o)
-  local inner, ww = piece_samples(P, p, o.weights)
+  local inner, ww = piece_samples(P, p, o.weights, o.skip)
   local a, b = p.start, p["end"]
   if #inner == 0 then return hermite(a, b, p.t_start, p.t_end) end
   -- repeated samples (a zero chord) would repeat a parameter, and an interpolating knot
@@ -316,8 +319,10 @@ local function periodic_of(C)
                         knots = period }
 end
 
--- The one curve of the pieces (see the head of this file). o: closed, sigma, weights
--- (Lua array or nil). Returns the curve and the parameter range of each piece.
+-- The one curve of the pieces (see the head of this file). o: closed, sigma, weights (Lua
+-- array or nil), skip (a set of sample indices no free run is fitted to: down-weighted
+-- points, which a run of as many control points as samples would otherwise pass through).
+-- Returns the curve and the parameter range of each piece.
 function M.assemble(P, pieces, o)
   local parts, lens, total = {}, {}, 0
   for i, p in ipairs(pieces) do
@@ -477,6 +482,40 @@ function M.corner_samples(P, pieces)
     end
   end
   table.sort(out)
+  return out
+end
+
+-- Pieces found on a subset of the samples (the trusted ones: a gross outlier of weight
+-- 1e-3 is no sample of a line), given back on all m samples: idx[j] is the index among
+-- all of the subset's j-th sample. Each piece keeps its samples and takes the left-out
+-- ones after them, up to the next piece's first (open: the first piece also those before
+-- it); a piece of no samples (a bridge) starts at the next piece's first. The models,
+-- ends and residuals (rms, max: of the subset's samples) stay.
+function M.spread(pieces, idx, m, closed)
+  local out, n = {}, #pieces
+  for k, p in ipairs(pieces) do
+    local q = {}
+    for key, v in pairs(p) do q[key] = v end
+    q.first = idx[p.first]
+    out[k] = q
+  end
+  local function next_first(k) -- the first sample of the next piece holding any
+    for s = 1, n do
+      local q = out[(k - 1 + s) % n + 1]
+      if q.count > 0 and ((k - 1 + s) < n or closed) then return q.first end
+    end
+    return m + 1 -- open: the last piece runs to the end
+  end
+  for k, q in ipairs(out) do
+    if q.count > 0 then
+      if k == 1 and not closed then q.first = 1 end
+      q.count = (next_first(k) - 1 - q.first) % m + 1 -- all m: a closed section's only one
+    else
+      local f = next_first(k)
+      q.first = f <= m and f or m
+    end
+    q.last = (q.first - 1 + math.max(q.count - 1, 0)) % m + 1
+  end
   return out
 end
 
