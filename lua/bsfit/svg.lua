@@ -546,8 +546,10 @@ function M.curves(o)
     for _, q in ipairs(sets[k]) do all[#all + 1] = q end
   end
   local d = { notes = {}, box = data_box(nil, to2, { all }) }
-  local entries = {}
-  for k, c in ipairs(o.curves) do entries[k] = { "line:" .. k, c.label } end
+  local entries = {} -- the curves with a label
+  for k, c in ipairs(o.curves) do
+    if c.label then entries[#entries + 1] = { "line:" .. k, c.label } end
+  end
   local f = layout({ size = o.size, title = o.title, subtitle = o.subtitle }, d, entries)
   local out = { f:open(), f:background(),
     '<g class="data" transform="scale(1,-1)">' }
@@ -567,10 +569,12 @@ function M.curves(o)
   local x, y = f.x1 + f:px(18), f.y1 - f:px(4)
   out[#out + 1] = '<g class="legend" fill="#222">'
   for _, c in ipairs(o.curves) do
+    if not c.label then goto next end
     y = y - f:px(20)
     out[#out + 1] = ('<line x1="%s" y1="%s" x2="%s" y2="%s" %s/>')
       :format(f:X(x), f:Y(y), f:X(x + f:px(22)), f:Y(y), style(c))
     out[#out + 1] = f:text(x + f:px(28), y - f:px(plot.FONT / 3), c.label, plot.FONT)
+    ::next::
   end
   out[#out + 1] = "</g></svg>\n"
   return table.concat(out, "\n")

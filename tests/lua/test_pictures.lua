@@ -264,3 +264,20 @@ T.test("bs.svg (C layers): 3D data say they are an x-y projection, 2D data do no
   local C2 = bs.curve.new { degree = 1, control_points = { { 0, 0 }, { 1, 1 } } }
   T.ok(not bs.svg.new(C2):curve(C2):tostring():find("projection", 1, true), "2D: no note")
 end)
+
+T.test("curves drawn together: a curve without a label is drawn but not in the legend", function()
+  local curves = {}
+  for k = 1, 30 do
+    local t = {}
+    for i = 1, 50 do local a = 2 * math.pi * i / 50; t[i] = { k * math.cos(a), k * math.sin(a) } end
+    curves[k] = { samples = bs.points.new(t), closed = true, colour = plot.viridis(k / 30),
+                  class = "section", label = k % 10 == 1 and ("loop %d"):format(k) or nil }
+  end
+  local s = svg.curves { curves = curves, title = "loops" }
+  local _, drawn = s:gsub('<polygon[^>]*class="section"', "")
+  T.eq(drawn, 30, "every curve drawn closed")
+  local _, named = s:gsub(">loop %d+<", "")
+  T.eq(named, 3, "the labelled ones in the legend")
+  local _, swatches = s:gsub('<line x1="[^"]*" y1="[^"]*" x2="[^"]*" y2="[^"]*" stroke=', "")
+  T.eq(swatches, 3, "a swatch each")
+end)

@@ -42,7 +42,11 @@ for f in vase_le.ply vase_be.ply vase_a.ply vase.stl vase_a.stl vase.obj; do
   check "$f: per-section files" test -s "$TMP/out_$f/slice003.json" -a -s "$TMP/out_$f/slice003.svg"
   check "$f: sections.iges and sections.svg" test -s "$TMP/out_$f/sections.iges" -a -s "$TMP/out_$f/sections.svg"
   check "$f: sections.svg draws the 5 closed sections closed" \
-    test "$(grep -c '^<polygon' "$TMP/out_$f/sections.svg")" -eq 5
+    test "$(grep -c '^<polygon[^>]*class="section"' "$TMP/out_$f/sections.svg")" -eq 5
+  check "$f: sections.svg titled, with axes and the 5 loops named" \
+    bash -c "grep -q '>sections: 5 loops in their planes<' '$TMP/out_$f/sections.svg' &&
+             grep -q 'class=\"axes\"' '$TMP/out_$f/sections.svg' &&
+             test \$(grep -c '>slice00[1-5] at ' '$TMP/out_$f/sections.svg') -eq 5"
 done
 "$BSFIT" cloud "$TMP/vase_le.ply" -o "$TMP/out_j2" --slices 5 -q -j 2
 check "mesh: -j 1 and -j 2 give the same files" diff -r -q -x timing.csv "$TMP/out_vase_le.ply" "$TMP/out_j2"

@@ -9,7 +9,8 @@
 
 local bs = require "bsfit"
 local report = require "bsfit.report"
-local plot_num = require("bsfit.plot").num
+local plot = require "bsfit.plot"
+local plot_num = plot.num
 
 local M = {}
 
@@ -45,35 +46,22 @@ local function summary(dir, result, ctx)
   report.must_write(dir .. "/timing.csv", report.csv({ "slice", "ms" }, timing))
 end
 
--- The loops drawn in their planes' (u, v) coordinates, overlaid.
+-- The loops drawn in their planes' (u, v) coordinates, overlaid (bsfit.svg's curves:
+-- axes, scale bar), coloured by their order along the axis; at most 12 of them named in
+-- the legend, evenly spread, the first and the last among them.
 local function picture(result, samples)
-  local paths, x0, y0, x1, y1 = {}, math.huge, math.huge, -math.huge, -math.huge
+  local n, curves = #result.curves, {}
+  local every = math.max(1, math.ceil((n - 1) / 11))
   for i, c in ipairs(result.curves) do
-    local S = c.curve:sample(samples)
-    local pts = {}
-    for k = 1, #S do
-      local x, y = S:get(k)
-      pts[k] = { x, y }
-      x0, y0, x1, y1 = math.min(x0, x), math.min(y0, y), math.max(x1, x), math.max(y1, y)
-    end
-    paths[i] = { pts = pts, slice = c.slice.index, closed = c.curve:is_periodic() }
+    local f = n > 1 and (i - 1) / (n - 1) or 0
+    local named = (i - 1) % every == 0 or i == n
+    curves[i] = { samples = c.curve:sample(samples), closed = c.curve:is_periodic(),
+                  colour = plot.viridis(0.9 * f), width = 1.5, class = "section",
+                  label = named and ("%s at %s"):format(c.name, plot.num(c.slice.position)) or nil }
   end
-  local size = math.max(x1 - x0, y1 - y0, 1e-300)
-  local scale, out = 760 / size, {}
-  out[1] = '<svg xmlns="http://www.w3.org/2000/svg" width="800" height="800" viewBox="0 0 800 800">'
-  out[2] = '<rect width="800" height="800" fill="white"/>'
-  for _, p in ipairs(paths) do
-    local d = {}
-    for k, q in ipairs(p.pts) do
-      d[k] = ("%.2f,%.2f"):format(20 + (q[1] - x0) * scale, 780 - (q[2] - y0) * scale)
-    end
-    local hue = (p.slice * 47) % 360
-    -- a periodic curve's samples cover [a, b): a polyline would leave its last chord out
-    out[#out + 1] = ('<%s fill="none" stroke="hsl(%d,70%%,40%%)" stroke-width="1" points="%s"/>')
-      :format(p.closed and "polygon" or "polyline", hue, table.concat(d, " "))
-  end
-  out[#out + 1] = "</svg>\n"
-  return table.concat(out, "\n")
+  return require("bsfit.svg").curves {
+    curves = curves, title = ("sections: %d loop%s in their planes"):format(n, n == 1 and "" or "s"),
+    subtitle = "coloured by position along the axis, first dark, last light" }
 end
 
 -- The surface's preview (bsfit.svg_surface): its wireframe with the fitted sections on it,
