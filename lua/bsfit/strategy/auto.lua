@@ -350,7 +350,12 @@ end
 function steps.segment(P, ctx)
   -- Huber reweighting asks for a fit that discounts samples by their distance: the pieces
   -- follow every sample they hold, so such sections take the smooth path
-  if P:dim() ~= 2 or #P < 6 or ctx.settings.robust then return {} end
+  if P:dim() ~= 2 or ctx.settings.robust then return {} end
+  if #P < 6 then -- too few to read a noise off: exact lines and arcs only (a circle of 4)
+    local exact = exact_pieces(P, ctx, nil, ctx.cache.exact_pieces)
+    if exact then ctx.segment_sigma = 0; return exact end
+    return {}
+  end
   local t = common.trusted(ctx)
   if t then return trusted_pieces(P, ctx, t) end
   local sub = subsample(ctx, P)
