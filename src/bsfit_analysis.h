@@ -95,10 +95,12 @@ typedef struct bsfit_corner {
 **     much at any scale, a bend in proportion to the scale).
 ** Of neighbouring candidates, the one nearest to where its sides meet is kept. The
 ** corner point is where the sides' parabolas meet (for a turn above 120 degrees, a
-** spike, no further out along its axis than the furthest sample). Its position along
-** the samples is the split of the samples between the two side lines that fits them
-** best (of the splits within 4 sigma^2 of the best, the middle one); for a spike, the
-** mean index of the samples within 2 sigma of the furthest out along its axis. The
+** spike, no further out along its axis than the furthest sample, unless the side lines
+** put it beyond by more than three standard errors: exact sides meet at their tip). Its
+** position along the samples is the split of the samples between the two side lines that
+** fits them best (of the splits within 4 sigma^2 of the best, the middle one); for a spike
+** held back, the mean index of the samples within 2 sigma of the furthest out along its
+** axis. The
 ** automatic scale is max(40 sigma, 4 median spacings), capped at a tenth of the
 ** bounding-box diagonal.
 **

@@ -38,9 +38,6 @@ static double bbox_diagonal(const contour *c) {
   return sqrt(s);
 }
 
-/* A spike's side lines cross at a shallow angle, so where they meet is poorly known
-** along its axis (and curved sides push it outwards): the corner point is kept no
-** further out along the axis than the furthest sample of the window. */
 /* The unit axis of a spike, pointing to its tip (left's direction less right's); 0 when
 ** the sides are parallel and there is none. */
 static int spike_axis(const side *left, const side *right, double axis[3]) {
@@ -56,12 +53,25 @@ static int spike_axis(const side *left, const side *right, double axis[3]) {
   return 1;
 }
 
-static void clamp_to_tip(const contour *c, size_t k, const side *left, const side *right,
-                         double *x) {
-  double axis[3], top = -INFINITY;
+/* A spike's side lines cross at a shallow angle, so where they meet is poorly known
+** along its axis (and curved sides push it outwards): the corner point is kept no
+** further out along the axis than the furthest sample of the window, unless the side lines
+** put it beyond by more than three standard errors (each line's offset at the tip, twice
+** the noise and the side's misfit, over the sine of the half angle of the spike): then it
+** lies beyond, where they meet (a triangle of 6 exact samples per side had its tip cut
+** back to a sample and placed at it, and the smooth fit through that corner missed the
+** samples by 0.4% of the size). Returns 1 when the tip lies there, beyond the samples. */
+static int clamp_to_tip(const contour *c, size_t k, const side *left, const side *right,
+                        double sigma, double *x) {
+  double axis[3], top = -INFINITY, half_sin = 0, se;
   long off;
   int d;
-  if (!spike_axis(left, right, axis)) return;
+  if (!spike_axis(left, right, axis)) return 0;
+  for (d = 0; d < 3; d++) {
+    double u = left->dir[d] + right->dir[d];
+    half_sin += u * u;
+  }
+  half_sin = 0.5 * sqrt(half_sin);
   for (off = -(long)left->count; off <= (long)right->count; off++) {
     const double *P;
     double pr = 0;
@@ -70,8 +80,12 @@ static void clamp_to_tip(const contour *c, size_t k, const side *left, const sid
     for (d = 0; d < c->dim; d++) pr += (P[d] - x[d]) * axis[d];
     if (pr > top) top = pr;
   }
-  if (top < 0) /* x lies beyond every sample: back along the axis to the furthest */
+  se = 2.0 * (sigma + fmax(left->rms, right->rms)) / fmax(half_sin, 1e-300);
+  if (top < 0 && -top > 3.0 * se) return 1;
+  /* x lies beyond every sample, by less than the lines tell: back along the axis */
+  if (top < 0)
     for (d = 0; d < c->dim; d++) x[d] += top * axis[d];
+  return 0;
 }
 
 /* A spike (a turn beyond 120 degrees): its tip is the sample furthest along the spike's
@@ -142,7 +156,7 @@ static long best_split(const contour *c, size_t k, const side *left, const side 
 ** where samples are closer than the noise (a thin trailing edge): the corner is not
 ** simply the sample nearest to x. */
 static double split_position(const contour *c, size_t k, const side *left, const side *right,
-                             const double *x, double sigma, double turn) {
+                             const double *x, double sigma, double turn, int beyond) {
   long lo = -(long)(left->count / 2), hi = (long)(right->count / 2);
   size_t j;
   const double *a, *b;
@@ -155,7 +169,7 @@ static double split_position(const contour *c, size_t k, const side *left, const
   if (hi <= lo) return (double)k;
   if (-lo > 127) lo = -127;
   if (hi > 127) hi = 127;
-  if (turn > 2.0 * PI / 3.0) return spike_tip(c, k, left, right, x, sigma, lo, hi);
+  if (turn > 2.0 * PI / 3.0 && !beyond) return spike_tip(c, k, left, right, x, sigma, lo, hi);
   j = at(c, k, best_split(c, k, left, right, sigma, lo, hi));
   a = point(c, j);
   b = point(c, j + 1);
@@ -190,7 +204,7 @@ static double corner_turn(const contour *c, size_t k, double scale, double sigma
   side left, right, half_left, half_right, gl, gr;
   double angle, half, se, x[3] = {0, 0, 0}, gap = 0, lim, r0, r1;
   size_t half_from, half_to, n;
-  int d;
+  int d, beyond;
   *position = (double)k;
   angle = bsfit__corner_turn_at_scale(c, k, scale, &left, &right, from, to);
   if (angle < 0) return -1.0;
@@ -204,11 +218,11 @@ static double corner_turn(const contour *c, size_t k, double scale, double sigma
   ** meet, for the fillet test) */
   memcpy(meet_point, x, sizeof x);
   bsfit__corner_refine_meet(c, &left, &right, meet_point);
-  if (angle > 2.0 * PI / 3.0) clamp_to_tip(c, k, &left, &right, meet_point);
+  beyond = angle > 2.0 * PI / 3.0 && clamp_to_tip(c, k, &left, &right, sigma, meet_point);
   for (d = 0; d < c->dim; d++)
     gap += (meet_point[d] - point(c, k)[d]) * (meet_point[d] - point(c, k)[d]);
   *gap_out = sqrt(gap);
-  *position = split_position(c, k, &left, &right, meet_point, sigma, angle);
+  *position = split_position(c, k, &left, &right, meet_point, sigma, angle, beyond);
   lim = 3.0 * sqrt(2.0 * sigma * sigma + bsfit__corner_meet_variance(&left, &right, x, sigma)) +
         bsfit__corner_bend_allowance(c, &left, &right, x, angle) + 0.005 * scale;
   if (bsfit__corner_edge_distance(c, k, x, angle) > lim) return -1.0;

@@ -127,6 +127,57 @@ T.test("corners with few samples per side or a curved side: found, Hausdorff < 3
   end
 end)
 
+-- Exact spikes with curved (parabolic, not circular) sides: no line or arc explains them,
+-- the smooth path keeps the tip as a corner. Its side lines meet beyond the samples, where
+-- the tip is; the tip was held back to the furthest sample and the corner placed at it
+-- (an exact triangle of 20 samples per side with sides bowed by 1% was 0.27 off at a
+-- sample, 0.2% of its size; 0.007 now).
+T.test("exact spikes with curved sides: the tip where the sides meet, between samples", function()
+  local uniform = synth.rng(4242)
+  local n, worst_point, worst_fit = 0, 0, 0
+  for k = 1, 24 do
+    local apex = math.rad(12 + 40 * uniform()) -- the spike's angle at its tip
+    local L, per = 100 * (0.5 + uniform()), 20 + (k % 3) * 10
+    local tip, rot = { 0, 0 }, 2 * math.pi * uniform()
+    local function at(r, a) return { r * math.cos(rot + a), r * math.sin(rot + a) } end
+    local V = { tip, at(L, apex / 2), at(L, -apex / 2) }
+    local bows = { 0.003 + 0.007 * uniform(), -0.004, 0.003 + 0.007 * uniform() }
+    local pts = {}
+    for s = 1, 3 do
+      local a, b = V[s], V[s % 3 + 1]
+      local dx, dy = b[1] - a[1], b[2] - a[2]
+      local len = math.sqrt(dx * dx + dy * dy)
+      for j = 0, per - 1 do
+        local f = (j + 0.3 + 0.4 * uniform()) / per
+        local off = bows[s] * len * 4 * f * (1 - f)
+        pts[#pts + 1] = { a[1] + f * dx + off * dy / len, a[2] + f * dy - off * dx / len }
+      end
+    end
+    local P = bs.points.new(pts)
+    local idx, _, pos, X = bs.geom.corners(P, { closed = true })
+    local what = ("spike %d: apex %.0f deg, %d samples per side"):format(k, math.deg(apex), per)
+    local found
+    for i = 1, #idx do
+      local x, y = X:get(i)
+      if math.sqrt(x * x + y * y) < 0.01 * L then found = i end
+    end
+    T.ok(found, what .. ": the tip is a corner")
+    if found then
+      local x, y = X:get(found)
+      local p = pos:get(found) % #pts -- between the last sample (3 per) and the first
+      worst_point = math.max(worst_point, math.sqrt(x * x + y * y) / L)
+      T.ok(math.sqrt(x * x + y * y) <= 5e-3 * L, what .. (": tip %.3g off"):format(math.sqrt(x * x + y * y)))
+      T.ok(p > 3 * per - 1 and p < 3 * per and p ~= math.floor(p) or p > 0 and p < 1,
+           what .. (": tip at position %.15g, not between the samples beside it"):format(pos:get(found)))
+      local _, rep = auto.run(P)
+      worst_fit = math.max(worst_fit, rep.max / L)
+      T.ok(rep.max <= 1e-3 * L, what .. (": auto %.3g from a sample"):format(rep.max))
+      n = n + 1
+    end
+  end
+  T.ok(n == 24, ("%d spikes, tips within %.3g of the side, fits within %.3g"):format(n, worst_point, worst_fit))
+end)
+
 T.test("no false corners where smooth bends look like corners (noise 0.3%, sparse uneven samples)", function()
   local f = synth.smooth.star
   for seed = 1, 3 do
