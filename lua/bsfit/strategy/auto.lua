@@ -363,6 +363,7 @@ function steps.segment(P, ctx)
   if exact then ctx.segment_sigma = 0; return exact end
   local pieces, why, found = noisy.find(P, ctx.sigma, closed(ctx))
   ctx.sharp_rejected, ctx.sharp_candidate = why, found.candidate -- for the loops step
+  ctx.sharp_disagreed = found.disagreed -- for the assemble step (pieces_for_misfit)
   if pieces then ctx.segment_sigma, ctx.sharp_curve = found.sigma, found.curve end
   return pieces or {}
 end
@@ -662,10 +663,43 @@ local function assembly(ctx, sigma)
            skip = t and t.isout }
 end
 
+-- A smooth curve that misses its own samples by more than MISFIT times the noise, when the
+-- noise read off lines and arcs disagreed with the windows' (or no level of theirs matched
+-- it): the pieces at that noise (at the windows' when none matched), when they pass every
+-- other test of bsfit.strategy.noisy_pieces (confirmed corners, within 6 sigma of every
+-- sample, no crossing) and miss the samples by less than half as much. Two estimates of
+-- the noise from 20 samples disagree by 25% by chance: a D of 10 uneven samples per side
+-- at noise 1e-4 of its size read 1.29 times the windows' noise off its line and arc, and
+-- its smooth curve, without the corners between samples, bulged 0.22 from a sample
+-- (100 sigma) and 1.15 from the true outline. Returns the pieces' curve, or nil.
+local MISFIT = 6
+local function pieces_for_misfit(P, ctx)
+  local s, d = ctx.sharp_disagreed, ctx.distances
+  if not (s and s > 0) or common.trusted(ctx) or ctx.distances_of ~= ctx.fit or not d then
+    return nil
+  end
+  local worst = d:max()
+  if not (worst > MISFIT * ctx.sigma) then return nil end
+  local pieces, _, found = noisy.at(P, s, ctx.sigma, closed(ctx))
+  if not pieces or not (sharp.distances(found.curve, P, pieces):max() < worst) then
+    return nil
+  end
+  warn(ctx, ("the smooth curve missed a sample by %.3g sigma: fitted the lines and arcs at "
+    .. "noise %.3g (%s)"):format(worst / ctx.sigma, s, ctx.sharp_rejected))
+  ctx.segment, ctx.segment_sigma, ctx.sharp_rejected = pieces, s, nil
+  ctx.corners = sharp.corner_samples(P, pieces)
+  return found.curve
+end
+
 -- The one curve of the pieces (bsfit.strategy.sharp): exact lines and arcs, free runs
 -- fitted between them, joined; false when the section is fitted as one smooth curve.
 function steps.assemble(P, ctx)
-  if not sharp_path(ctx) then return false end
+  if not sharp_path(ctx) then
+    local C = not ctx.opts.segment and pieces_for_misfit(P, ctx)
+    if not C then return false end
+    ctx.count = C:distinct()
+    return C
+  end
   local C = ctx.sharp_curve or sharp.assemble(P, ctx.segment, assembly(ctx, ctx.segment_sigma))
   ctx.count = C:distinct()
   return C

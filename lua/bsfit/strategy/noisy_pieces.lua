@@ -8,7 +8,10 @@
 -- sigma is the window estimate of the noise (bs.geom.noise_sigma). pieces is nil when the
 -- section is a smooth curve, why then says which test refused it (rep.pieces_rejected);
 -- found.sigma is the noise read off the pieces, found.curve their one curve, and
--- found.candidate the segmentation before the tests (the loops step falls back on it).
+-- found.candidate the segmentation before the tests (the loops step falls back on it);
+-- found.disagreed, when the two noises disagreed, the pieces' (the windows' when no level
+-- of lines and arcs matched): auto tries the pieces at it when the smooth curve misses its
+-- samples (noisy.at(P, s, sigma, closed): every test but that one).
 --
 -- The tests, in order:
 --   - the noise read off the lines' and arcs' own residuals (bs.geom.segment_sigma) is
@@ -58,7 +61,7 @@ local function noise_of_pieces(P, sigma, closed)
     return nil, ("no noise level of lines and arcs up to %.3g (windows %.3g)"):format(AGREE * sigma, sigma)
   end
   if not (s < AGREE * sigma) then
-    return nil, ("noise of the pieces %.3g, of windows %.3g"):format(s, sigma)
+    return nil, ("noise of the pieces %.3g, of windows %.3g"):format(s, sigma), s
   end
   return s
 end
@@ -125,10 +128,10 @@ local function curve_within_noise(P, pieces, s, closed)
   return C
 end
 
-function M.find(P, sigma, closed)
-  local found = {}
-  local s, why = noise_of_pieces(P, sigma, closed)
-  if not s then return nil, why, found end
+-- The pieces at noise s (the noise read off them; sigma: the windows'), through every test
+-- but the agreement of the two: pieces, why, found as M.find's.
+function M.at(P, s, sigma, closed)
+  local found, why = {}, nil
   local pieces = common.ok("segmentation", bs.geom.segment(P, { closed = closed, sigma = s }))
   -- one piece round a noisy section (a circle within the noise, a mesh's slice of a vase):
   -- the smooth curve follows it as well, and stays polynomial
@@ -146,6 +149,12 @@ function M.find(P, sigma, closed)
   if not C then return nil, why, found end
   found.sigma, found.curve = s, C
   return pieces, nil, found
+end
+
+function M.find(P, sigma, closed)
+  local s, why, disagreed = noise_of_pieces(P, sigma, closed)
+  if not s then return nil, why, { disagreed = disagreed or sigma } end
+  return M.at(P, s, sigma, closed)
 end
 
 return M
