@@ -61,6 +61,36 @@ T.test("a repeated closing point is dropped, reported, and fits as without it", 
   end
 end)
 
+-- A closing point given twice or three times (a scanner that repeats its last sample) is
+-- dropped as once: every strategy raised "bad argument #1 to 'params' (closed data: the
+-- last point repeats the first (drop point 12))" on a 12-point circle with two repeats.
+T.test("a closing point repeated twice or three times is dropped, and fits as without it", function()
+  for _, s in ipairs(STRATEGIES) do
+    local st = require("bsfit.strategy." .. s)
+    for _, sec in ipairs(sections()) do
+      local m = #sec.pts
+      local C0 = st.run(bs.points.new(sec.pts))
+      for extra = 2, 3 do
+        local pts = copy(sec.pts)
+        for k = 1, extra do pts[m + k] = { sec.pts[1][1], sec.pts[1][2] } end
+        local what = ("%s %s, the closing point %d times"):format(s, sec.name, extra)
+        local ok, C1, r1 = pcall(st.run, bs.points.new(pts))
+        T.ok(ok, what .. ": " .. tostring(C1))
+        T.eq(r1.dropped_closing_point, true, what)
+        T.ok(r1.warnings[1]:find(("points %d to %d repeat point 1"):format(m + 1, m + extra), 1, true),
+             r1.warnings[1])
+        local a, b = C0:domain()
+        for k = 0, 20 do
+          local t = a + (b - a) * k / 20
+          local x0, y0 = C0:eval(t)
+          local x1, y1 = C1:eval(t)
+          T.ok(x0 == x1 and y0 == y1, ("%s: the same curve at t=%g"):format(what, t))
+        end
+      end
+    end
+  end
+end)
+
 T.test("open fits keep a last point equal to the first", function()
   local pts = synth.sample_smooth(synth.smooth.ellipse, 40)
   pts[41] = { pts[1][1], pts[1][2] }

@@ -408,16 +408,22 @@ function M.drop_closing_point(P, opts)
      or same_point(P, 1, 2) and same_point(P, 1, m // 2) and M.all_same(P) then
     return P, opts, notes -- all points coinciding is another failure, said as such later
   end
+  -- the closing point may be given more than once (a scanner that repeats its last
+  -- sample): every repeat of point 1 at the end goes
+  local keep = m - 1
+  while keep > 2 and same_point(P, 1, keep) do keep = keep - 1 end
   local o = {}
   for k, v in pairs(opts or {}) do o[k] = v end
   local pw = o.point_weights
   if pw ~= nil and (type(pw) == "table" or getmetatable(pw)) then
-    o.point_weights = head_of(pw, m - 1)
+    o.point_weights = head_of(pw, keep)
   end
   notes.dropped_closing_point = true
-  notes.warnings[1] = ("point %d repeats point 1 (a closed section's closing point): dropped")
-    :format(m)
-  return P:slice(1, m - 1), o, notes
+  notes.warnings[1] = keep == m - 1
+    and ("point %d repeats point 1 (a closed section's closing point): dropped"):format(m)
+    or ("points %d to %d repeat point 1 (a closed section's closing point): dropped")
+      :format(keep + 1, m)
+  return P:slice(1, keep), o, notes
 end
 
 -- Merges runs of repeated consecutive points (after M.drop_closing_point) into one
