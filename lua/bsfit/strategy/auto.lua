@@ -388,10 +388,14 @@ local function turn(P, i, j, k)
   return math.deg(math.acos(math.max(-1, math.min(1, dot / math.sqrt(na * nb)))))
 end
 
+-- A closing gap longer than CLOSING_CLEAR times the longest other step leaves a doubt
+-- however it is closed (by the spacing or by the pieces; see steps.ends).
+local CLOSING_CLEAR = 1.5
+
 -- Open or closed from the gap alone: closed, clear (see steps.ends). hmax: the longest step.
 function gap_decision(P, gap, h, hmax)
   local m = #P
-  if gap <= 1.5 * h then return true, true end
+  if gap <= 1.5 * h then return true, gap <= CLOSING_CLEAR * hmax end
   if gap <= hmax then return true, false end
   if gap <= 2.5 * h then return math.max(turn(P, m - 1, m, 1), turn(P, m, 1, 2)) <= 100, false end
   return false, gap > 2.5 * hmax
@@ -410,6 +414,34 @@ end
 -- (rep.closed_ambiguous, a warning). Lines and arcs that cover the section
 -- and meet across the gap without a detour (sharp.closing_pieces) close it, clearly.
 -- closed = true or false is taken as given.
+-- Does the chord from the last sample to the first cross a step of the samples' polygon
+-- in its middle (a tenth of it from either end at least), a step more than a tenth of the
+-- samples (and 2) from either end? Crossings near the ends are a closed scan's overlap, or
+-- noise (a sparse noisy rounded rectangle's closing step crosses its neighbour's).
+local function chord_crosses(P)
+  local m = #P
+  local ax, ay = P:get(m)
+  local bx, by = P:get(1)
+  local cx, cy = bx - ax, by - ay
+  local function side(x, y) return cx * (y - ay) - cy * (x - ax) end
+  local skip = math.max(2, m // 10)
+  local px, py = P:get(skip)
+  local sp = side(px, py)
+  for i = skip + 1, m - skip do
+    local qx, qy = P:get(i)
+    local sq = side(qx, qy)
+    if (sp > 0 and sq < 0) or (sp < 0 and sq > 0) then
+      -- the step crosses the chord's line at fraction f of the step: where along the chord?
+      local f = sp / (sp - sq)
+      local x, y = px + f * (qx - px), py + f * (qy - py)
+      local along = ((x - ax) * cx + (y - ay) * cy) / (cx * cx + cy * cy)
+      if along > 0.1 and along < 0.9 then return true end
+    end
+    px, py, sp = qx, qy, sq
+  end
+  return false
+end
+
 function steps.ends(P, ctx)
   local c = ctx.settings.closed
   if c == true or c == false then return c and "closed" or "open" end
@@ -443,13 +475,20 @@ function steps.ends(P, ctx)
   local hmed = all[(#all + 1) // 2]
   local gap, h = step(m, 1), math.max(hloc, 2 * hmed)
   local closed_, clear = gap_decision(P, gap, h, all[#all])
-  -- lines and arcs that meet across the gap close it, whatever the spacing
+  -- lines and arcs that meet across the gap close it; without a doubt when the gap is like
+  -- the other steps (at most CLOSING_CLEAR times the longest): across a longer one, an open
+  -- run's end sides may meet as well (three sides of a pentagon, an arc of 270 degrees)
   if (not closed_ or not clear) and P:dim() == 2 and m >= 6 then
     local pieces, exact = sharp.closing_pieces(P, gap)
     if pieces then
-      closed_, clear = true, true
+      closed_, clear = true, gap <= CLOSING_CLEAR * all[#all]
       if exact and P == all_points then ctx.cache.exact_pieces = pieces end
     end
+  end
+  -- a closing chord across the samples' own polygon closes no outline (a spiral's ends lie
+  -- on different turns): open, with the doubt said
+  if closed_ and P:dim() == 2 and gap > 1.5 * hmed and chord_crosses(P) then
+    closed_, clear = false, false
   end
   ctx.settings.closed = closed_
   if not clear then

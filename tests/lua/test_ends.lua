@@ -1,0 +1,66 @@
+-- test_ends.lua: auto's open-or-closed decision (docs/auto.md, "Open or closed") on open
+-- runs that earlier versions closed without a doubt: arcs of 280 to 340 degrees sampled
+-- unevenly (the pieces, an arc that covers the samples, closed them however long the gap
+-- against the spacing) and spirals (their gap a few steps, their closing chord across
+-- their own turns: closed, the curve crossing itself).
+local T = require "tap"
+local bs = require "bsfit"
+local synth = require "synth"
+local auto = require "bsfit.strategy.auto"
+
+local function dist(a, b) return math.sqrt((a[1] - b[1]) ^ 2 + (a[2] - b[2]) ^ 2) end
+
+T.test("open arcs whose gap is longer than 1.5 of their longest step: never closed without a doubt", function()
+  local uniform, gauss = synth.rng(8821)
+  local tried, open, doubted = 0, 0, 0
+  for k = 1, 120 do
+    local m, sweep = 20 + (k % 6) * 20, math.rad(280 + 60 * uniform())
+    local r, sigma = 10 ^ (2 * uniform()), ({ 0, 1e-4, 1e-3 })[k % 3 + 1]
+    local fs = {}
+    for j = 1, m do fs[j] = k % 2 == 0 and uniform() or (j - 1) / (m - 1) end
+    table.sort(fs)
+    local pts = {}
+    for j = 1, m do
+      local t = fs[j] * sweep
+      pts[j] = { r * math.cos(t) + sigma * 2 * r * gauss(), r * math.sin(t) + sigma * 2 * r * gauss() }
+    end
+    local longest = 0
+    for j = 2, m do longest = math.max(longest, dist(pts[j], pts[j - 1])) end
+    if dist(pts[m], pts[1]) > 1.5 * longest then
+      tried = tried + 1
+      local _, rep = auto.run(bs.points.new(pts))
+      T.ok(not rep.closed or rep.closed_ambiguous,
+           ("arc of %.0f degrees, %d samples, noise %g: closed without a doubt"):format(math.deg(sweep), m, sigma))
+      if not rep.closed then open = open + 1 elseif rep.closed_ambiguous then doubted = doubted + 1 end
+    end
+  end
+  print(("# %d arcs: %d open, %d closed with the doubt said"):format(tried, open, doubted))
+  T.ok(tried >= 60, tried .. " arcs tried")
+end)
+
+T.test("spirals are open: their closing chord crosses their own turns", function()
+  local uniform, gauss = synth.rng(1311)
+  local n = 0
+  for k = 1, 60 do
+    local turns, m = 1.2 + 1.3 * uniform(), 15 + (k % 4) * 15
+    local sigma = ({ 0, 1e-3 })[k % 2 + 1]
+    local pts = {}
+    for j = 1, m do
+      local f = k % 3 == 0 and ((j - 1) + 0.8 * (uniform() - 0.5)) / (m - 1) or (j - 1) / (m - 1)
+      f = math.min(math.max(f, 0), 1)
+      local t, rad = 2 * math.pi * turns * f, 1 + 4 * f
+      pts[j] = { rad * math.cos(t) + 5 * sigma * gauss(), rad * math.sin(t) + 5 * sigma * gauss() }
+    end
+    local C, rep = auto.run(bs.points.new(pts))
+    local what = ("spiral of %.2f turns, %d samples, noise %g"):format(turns, m, sigma)
+    T.eq(rep.closed, false, what)
+    T.ok(not C:is_periodic() and rep.crossings == 0, what .. ": an open curve, no crossing")
+    n = n + 1
+  end
+  T.ok(n == 60, n .. " spirals")
+  -- and closed = true is still taken as given
+  local pts = {}
+  for j = 1, 30 do local t = 2 * math.pi * 1.8 * (j - 1) / 29; pts[j] = { (1 + t) * math.cos(t), (1 + t) * math.sin(t) } end
+  local C, rep = auto.run(bs.points.new(pts), { closed = true })
+  T.ok(rep.closed and C:is_periodic(), "closed = true honoured")
+end)
