@@ -45,3 +45,23 @@ T.test("a smooth curve that misses its samples by 6 sigma gives way to the lines
   T.ok(swaps >= 5, swaps .. " swaps")
   T.ok(within >= swaps // 2, within .. " of the swapped within the floor")
 end)
+
+-- A count, a tolerance or a replaced step asks for the smooth curve: it is kept, however far
+-- it misses (the swap ignored a count of 8 asked for, and the curve's report then mixed the
+-- two paths).
+T.test("a count, a tolerance or a replaced step keeps the smooth curve", function()
+  local n = 0
+  for c in shapes.sweep_cases { names = { "D" }, pers = { 10 }, rels = { 1e-4 }, unevens = { true } } do
+    local P = bs.points.new(c.pts)
+    local _, rep = auto.run(P)
+    T.ok(swapped(rep), "the D swaps without options")
+    for _, o in ipairs { { count = 8 }, { tol = 0.5 }, { corners = {} }, { segment = {} } } do
+      local C2, r2 = auto.run(P, o)
+      local what = next(o)
+      T.ok(not swapped(r2) and r2.pieces == nil, what .. ": the smooth curve")
+      if o.count then T.eq(C2:distinct(), 8, "count honoured") end
+      n = n + 1
+    end
+  end
+  T.eq(n, 4)
+end)

@@ -78,13 +78,17 @@ local function warn(ctx, msg)
   ctx.warnings[#ctx.warnings + 1] = msg
 end
 
--- Is the section made into one curve of lines, arcs and free runs (the segment step
--- found features), rather than fitted as one smooth curve? Not when a step it would
--- bypass was replaced or a count or tolerance was asked for.
-local function sharp_path(ctx)
+-- May the pieces make the curve? Not when a step they would bypass was replaced or a count
+-- or tolerance was asked for.
+local function pieces_allowed(ctx)
   local o = ctx.opts
-  return type(ctx.segment) == "table" and #ctx.segment > 0 and o.count == nil and
-         o.corners == nil and o.fit == nil and ctx.settings.tol == nil
+  return o.count == nil and o.corners == nil and o.fit == nil and ctx.settings.tol == nil
+end
+
+-- Is the section made into one curve of lines, arcs and free runs (the segment step
+-- found features), rather than fitted as one smooth curve?
+local function sharp_path(ctx)
+  return type(ctx.segment) == "table" and #ctx.segment > 0 and pieces_allowed(ctx)
 end
 
 
@@ -714,7 +718,8 @@ end
 local MISFIT = 6
 local function pieces_for_misfit(P, ctx)
   local s, d = ctx.sharp_disagreed, ctx.distances
-  if not (s and s > 0) or common.trusted(ctx) or ctx.distances_of ~= ctx.fit or not d then
+  if not (s and s > 0) or ctx.opts.segment ~= nil or not pieces_allowed(ctx) or
+     common.trusted(ctx) or ctx.distances_of ~= ctx.fit or not d then
     return nil
   end
   local worst = d:max()
@@ -734,7 +739,7 @@ end
 -- fitted between them, joined; false when the section is fitted as one smooth curve.
 function steps.assemble(P, ctx)
   if not sharp_path(ctx) then
-    local C = not ctx.opts.segment and pieces_for_misfit(P, ctx)
+    local C = pieces_for_misfit(P, ctx)
     if not C then return false end
     ctx.count = C:distinct()
     return C
