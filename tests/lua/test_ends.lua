@@ -55,6 +55,8 @@ T.test("spirals are open: their closing chord crosses their own turns", function
     local what = ("spiral of %.2f turns, %d samples, noise %g"):format(turns, m, sigma)
     T.eq(rep.closed, false, what)
     T.ok(not C:is_periodic() and rep.crossings == 0, what .. ": an open curve, no crossing")
+    T.ok(rep.closed_ambiguous and rep.warnings[1]:find("closing it would cross the samples' own path", 1, true),
+         what .. ": the doubt said, and why")
     n = n + 1
   end
   T.ok(n == 60, n .. " spirals")

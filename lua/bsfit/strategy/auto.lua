@@ -491,14 +491,15 @@ function steps.ends(P, ctx)
   end
   -- a closing chord across the samples' own polygon closes no outline (a spiral's ends lie
   -- on different turns): open, with the doubt said
-  if closed_ and P:dim() == 2 and gap > 1.5 * hmed and chord_crosses(P) then
-    closed_, clear = false, false
-  end
+  local crossing = closed_ and P:dim() == 2 and gap > 1.5 * hmed and chord_crosses(P)
+  if crossing then closed_, clear = false, false end
   ctx.settings.closed = closed_
   if not clear then
     ctx.closed_ambiguous = true
     warn(ctx, ("open or closed is ambiguous (gap %.3g between the last and first points, steps "
-      .. "%.3g near them): fitted %s; say --open or --closed"):format(gap, hloc, closed_ and "closed" or "open"))
+      .. "%.3g near them%s): fitted %s; say --open or --closed"):format(gap, hloc,
+      crossing and "; closing it would cross the samples' own path" or "",
+      closed_ and "closed" or "open"))
   end
   return closed_ and "closed" or "open"
 end
