@@ -405,19 +405,6 @@ function gap_decision(P, gap, h, hmax)
   return false, gap > 2.5 * hmax
 end
 
--- Open or closed (setting closed = "auto", the default): from the gap between the last
--- and the first point against the steps next to them (the two at each end, h_loc: a
--- closed section's closing step is like its neighbours, while sections sampled sparsely
--- along long sides have steps far longer elsewhere) and twice the median step, h =
--- max(h_loc, 2 h_med). A gap up to 1.5 h closes the section, and so does one no longer
--- than the longest step elsewhere (samples spread unevenly along long sides leave steps of
--- half a side), as ambiguous; one above 2.5 h opens it, as ambiguous when it is within 2.5
--- times the longest step; between, the section is closed when the closing chord continues
--- both ends (turns by at most 100 degrees from the last step and into the first: an open
--- run's ends point away from each other), as ambiguous. Ambiguous decisions are reported
--- (rep.closed_ambiguous, a warning). Lines and arcs that cover the section
--- and meet across the gap without a detour (sharp.closing_pieces) close it, clearly.
--- closed = true or false is taken as given.
 -- Does the chord from the last sample to the first cross a step of the samples' polygon
 -- in its middle (a tenth of it from either end at least), a step more than a tenth of the
 -- samples (and 2) from either end? Crossings near the ends are a closed scan's overlap, or
@@ -446,6 +433,21 @@ local function chord_crosses(P)
   return false
 end
 
+-- Open or closed (setting closed = "auto", the default): from the gap between the last
+-- and the first point against the steps next to them (the two at each end, h_loc: a
+-- closed section's closing step is like its neighbours, while sections sampled sparsely
+-- along long sides have steps far longer elsewhere) and twice the median step, h =
+-- max(h_loc, 2 h_med). A gap up to 1.5 h closes the section, and so does one no longer
+-- than the longest step elsewhere (samples spread unevenly along long sides leave steps of
+-- half a side), as ambiguous; one above 2.5 h opens it, as ambiguous when it is within 2.5
+-- times the longest step; between, the section is closed when the closing chord continues
+-- both ends (turns by at most 100 degrees from the last step and into the first: an open
+-- run's ends point away from each other), as ambiguous. Ambiguous decisions are reported
+-- (rep.closed_ambiguous, a warning). Lines and arcs that cover the section
+-- and meet across the gap without a detour (sharp.closing_pieces) close it. A gap longer
+-- than CLOSING_CLEAR times the longest other step leaves a doubt, however it is closed; a
+-- closing chord that crosses the samples' own path (chord_crosses) opens the section,
+-- with a doubt. closed = true or false is taken as given.
 function steps.ends(P, ctx)
   local c = ctx.settings.closed
   if c == true or c == false then return c and "closed" or "open" end
@@ -711,7 +713,7 @@ end
 -- noise read off lines and arcs disagreed with the windows' (or no level of theirs matched
 -- it): the pieces at that noise (at the windows' when none matched), when they pass every
 -- other test of bsfit.strategy.noisy_pieces (confirmed corners, within 6 sigma of every
--- sample, no crossing) and miss the samples by less than half as much. Two estimates of
+-- sample, no crossing) and miss the samples by less than it does. Two estimates of
 -- the noise from 20 samples disagree by 25% by chance: a D of 10 uneven samples per side
 -- at noise 1e-4 of its size read 1.29 times the windows' noise off its line and arc, and
 -- its smooth curve, without the corners between samples, bulged 0.22 from a sample
