@@ -720,17 +720,16 @@ end
 -- (100 sigma) and 1.15 from the true outline. Returns the pieces' curve, or nil.
 local MISFIT = 6
 local function pieces_for_misfit(P, ctx)
+  -- set by the segment step's untrusted path only (not when it was replaced, nor on the
+  -- trusted points' path)
   local s, d = ctx.sharp_disagreed, ctx.distances
-  if not (s and s > 0) or ctx.opts.segment ~= nil or not pieces_allowed(ctx) or
-     common.trusted(ctx) or ctx.distances_of ~= ctx.fit or not d then
+  if not (s and s > 0) or not pieces_allowed(ctx) or ctx.distances_of ~= ctx.fit then
     return nil
   end
   local worst = d:max()
   if not (worst > MISFIT * ctx.sigma) then return nil end
   local pieces, _, found = noisy.at(P, s, ctx.sigma, closed(ctx))
-  if not pieces or not (sharp.distances(found.curve, P, pieces):max() < worst) then
-    return nil
-  end
+  if not pieces or not (found.max < worst) then return nil end
   warn(ctx, ("the smooth curve missed a sample by %.3g sigma: fitted the lines and arcs at "
     .. "noise %.3g (%s)"):format(worst / ctx.sigma, s, ctx.sharp_rejected))
   ctx.segment, ctx.segment_sigma, ctx.sharp_rejected = pieces, s, nil

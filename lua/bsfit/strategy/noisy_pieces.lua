@@ -7,7 +7,8 @@
 --
 -- sigma is the window estimate of the noise (bs.geom.noise_sigma). pieces is nil when the
 -- section is a smooth curve, why then says which test refused it (rep.pieces_rejected);
--- found.sigma is the noise read off the pieces, found.curve their one curve, and
+-- found.sigma is the noise read off the pieces, found.curve their one curve (found.max its
+-- largest distance to a sample), and
 -- found.candidate the segmentation before the tests (the loops step falls back on it);
 -- found.disagreed, when the two noises disagreed, the pieces' (the windows' when no level
 -- of lines and arcs matched): auto tries the pieces at it when the smooth curve misses its
@@ -112,20 +113,21 @@ local function soften(P, pieces, weak)
   return pieces
 end
 
--- The one curve of the pieces, or nil and why: it must stay within the noise of every
--- sample (6 sigma), and pieces that cross (a short noisy side read as an arc bulging over
--- its neighbour) are no better than the smooth path, which the loops step can still repair.
+-- The one curve of the pieces and its largest distance to a sample, or nil and why: it
+-- must stay within the noise of every sample (6 sigma), and pieces that cross (a short
+-- noisy side read as an arc bulging over its neighbour) are no better than the smooth
+-- path, which the loops step can still repair.
 local function curve_within_noise(P, pieces, s, closed)
   -- pieces that do not make one curve (bs.curve.join raises where two do not meet) are
   -- refused like any other: the smooth path remains
   local made, C = pcall(sharp.assemble, P, pieces, { closed = closed, sigma = s })
   if not made then return nil, "the pieces make no curve: " .. tostring(C) end
-  local d = sharp.distances(C, P, pieces)
-  if d:max() > 6 * s then return nil, ("curve %.3g sigma from a sample"):format(d:max() / s) end
+  local dmax = sharp.distances(C, P, pieces):max()
+  if dmax > 6 * s then return nil, ("curve %.3g sigma from a sample"):format(dmax / s) end
   if bs.geom.self_intersections(C, math.max(2000, 32 * C:distinct())) > 0 then
     return nil, "the pieces' curve crosses itself"
   end
-  return C
+  return C, dmax
 end
 
 -- The pieces at noise s (the noise read off them; sigma: the windows'), through every test
@@ -144,10 +146,9 @@ function M.at(P, s, sigma, closed)
   if not pieces then return nil, why, found end
   why = sharp.degenerate(pieces) or sharp.far_corner(P, pieces)
   if why then return nil, why, found end
-  local C
-  C, why = curve_within_noise(P, pieces, s, closed)
-  if not C then return nil, why, found end
-  found.sigma, found.curve = s, C
+  local C, r = curve_within_noise(P, pieces, s, closed)
+  if not C then return nil, r, found end
+  found.sigma, found.curve, found.max = s, C, r
   return pieces, nil, found
 end
 
