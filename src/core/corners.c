@@ -61,7 +61,7 @@ static int spike_axis(const side *left, const side *right, double axis[3]) {
 ** lies beyond, where they meet (a triangle of 6 exact samples per side had its tip cut
 ** back to a sample and placed at it, and the smooth fit through that corner missed the
 ** samples by 0.4% of the size). Returns 1 when the tip lies there, beyond the samples. */
-static int clamp_to_tip(const contour *c, size_t k, const side *left, const side *right,
+static int place_spike_corner(const contour *c, size_t k, const side *left, const side *right,
                         double sigma, double *x) {
   double axis[3], top = -INFINITY, half_sin = 0, se;
   long off;
@@ -218,7 +218,7 @@ static double corner_turn(const contour *c, size_t k, double scale, double sigma
   ** meet, for the fillet test) */
   memcpy(meet_point, x, sizeof x);
   bsfit__corner_refine_meet(c, &left, &right, meet_point);
-  beyond = angle > 2.0 * PI / 3.0 && clamp_to_tip(c, k, &left, &right, sigma, meet_point);
+  beyond = angle > 2.0 * PI / 3.0 && place_spike_corner(c, k, &left, &right, sigma, meet_point);
   for (d = 0; d < c->dim; d++)
     gap += (meet_point[d] - point(c, k)[d]) * (meet_point[d] - point(c, k)[d]);
   *gap_out = sqrt(gap);
