@@ -10,7 +10,7 @@ local auto = require "bsfit.strategy.auto"
 
 local function dist(a, b) return math.sqrt((a[1] - b[1]) ^ 2 + (a[2] - b[2]) ^ 2) end
 
-T.test("open arcs whose gap is longer than 1.5 of their longest step: never closed without a doubt", function()
+T.test("open arcs, their gap over 1.5 of their longest step: never closed without a doubt", function()
   local uniform, gauss = synth.rng(8821)
   local tried, open, doubted = 0, 0, 0
   for k = 1, 120 do
@@ -22,7 +22,8 @@ T.test("open arcs whose gap is longer than 1.5 of their longest step: never clos
     local pts = {}
     for j = 1, m do
       local t = fs[j] * sweep
-      pts[j] = { r * math.cos(t) + sigma * 2 * r * gauss(), r * math.sin(t) + sigma * 2 * r * gauss() }
+      local s = 2 * sigma * r
+      pts[j] = { r * math.cos(t) + s * gauss(), r * math.sin(t) + s * gauss() }
     end
     local longest = 0
     for j = 2, m do longest = math.max(longest, dist(pts[j], pts[j - 1])) end
@@ -30,8 +31,10 @@ T.test("open arcs whose gap is longer than 1.5 of their longest step: never clos
       tried = tried + 1
       local _, rep = auto.run(bs.points.new(pts))
       T.ok(not rep.closed or rep.closed_ambiguous,
-           ("arc of %.0f degrees, %d samples, noise %g: closed without a doubt"):format(math.deg(sweep), m, sigma))
-      if not rep.closed then open = open + 1 elseif rep.closed_ambiguous then doubted = doubted + 1 end
+           ("arc of %.0f degrees, %d samples, noise %g: closed without a doubt")
+             :format(math.deg(sweep), m, sigma))
+      if not rep.closed then open = open + 1
+      elseif rep.closed_ambiguous then doubted = doubted + 1 end
     end
   end
   print(("# %d arcs: %d open, %d closed with the doubt said"):format(tried, open, doubted))
@@ -40,7 +43,7 @@ end)
 
 T.test("spirals are open: their closing chord crosses their own turns", function()
   local uniform, gauss = synth.rng(1311)
-  local n, why = 0, 0
+  local why = 0
   for k = 1, 60 do
     local turns, m = 1.2 + 1.3 * uniform(), 15 + (k % 4) * 15
     local sigma = ({ 0, 1e-3 })[k % 2 + 1]
@@ -59,9 +62,7 @@ T.test("spirals are open: their closing chord crosses their own turns", function
     for _, w in ipairs(rep.warnings) do
       if w:find("closing it would cross the samples' own path", 1, true) then why = why + 1 end
     end
-    n = n + 1
   end
-  T.ok(n == 60, n .. " spirals")
   print("# " .. why .. " spirals opened by their closing chord (the rest by their gap)")
   T.ok(why >= 10, why .. " of them opened because closing would cross their own path")
   -- and closed = true is still taken as given

@@ -64,7 +64,7 @@ end)
 -- A closing point given twice or three times (a scanner that repeats its last sample) is
 -- dropped as once: every strategy raised "bad argument #1 to 'params' (closed data: the
 -- last point repeats the first (drop point 12))" on a 12-point circle with two repeats.
-T.test("a closing point repeated twice or three times is dropped, and fits as without it", function()
+T.test("a closing point given twice or three times is dropped, and fits as without it", function()
   for _, s in ipairs(STRATEGIES) do
     local st = require("bsfit.strategy." .. s)
     for _, sec in ipairs(sections()) do
@@ -77,7 +77,8 @@ T.test("a closing point repeated twice or three times is dropped, and fits as wi
         local ok, C1, r1 = pcall(st.run, bs.points.new(pts))
         T.ok(ok, what .. ": " .. tostring(C1))
         T.eq(r1.dropped_closing_point, true, what)
-        T.ok(r1.warnings[1]:find(("points %d to %d repeat point 1"):format(m + 1, m + extra), 1, true),
+        local said = ("points %d to %d repeat point 1"):format(m + 1, m + extra)
+        T.ok(r1.warnings[1]:find(said, 1, true),
              r1.warnings[1])
         local a, b = C0:domain()
         for k = 0, 20 do

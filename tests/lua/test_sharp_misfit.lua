@@ -19,9 +19,10 @@ local function swapped(rep)
   return false
 end
 
-T.test("a smooth curve that misses its samples by 6 sigma gives way to the lines and arcs", function()
+T.test("a smooth curve missing its samples by 6 sigma gives way to the lines and arcs", function()
   local n, swaps, within, smooth_within = 0, 0, 0, 0
-  for c in shapes.sweep_cases { pers = { 8, 10 }, rels = { 1e-4, 3e-4 }, unevens = { true }, draws = 2,
+  for c in shapes.sweep_cases { pers = { 8, 10 }, rels = { 1e-4, 3e-4 }, unevens = { true },
+      draws = 2,
       seed = function(k, per, j, d) return 77000 + 1000 * k + 10 * per + j + 100000 * d end } do
     local P = bs.points.new(c.pts)
     local C, rep = auto.run(P)
@@ -51,7 +52,8 @@ end)
 -- two paths).
 T.test("a count, a tolerance or a replaced step keeps the smooth curve", function()
   local n = 0
-  for c in shapes.sweep_cases { names = { "D" }, pers = { 10 }, rels = { 1e-4 }, unevens = { true } } do
+  local D = { names = { "D" }, pers = { 10 }, rels = { 1e-4 }, unevens = { true } }
+  for c in shapes.sweep_cases(D) do
     local P = bs.points.new(c.pts)
     local _, rep = auto.run(P)
     T.ok(swapped(rep), "the D swaps without options")
