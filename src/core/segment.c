@@ -365,7 +365,6 @@ static double best_of_kind(const seg_section *s, size_t origin, size_t j, int ki
 ** parameter that explains nothing; 2 is Akaike's, ln m Schwarz's). Every start is tried,
 ** O(m x run length): noisy sections of more than BSFIT__DENSE_MOST samples are covered on
 ** every k-th sample (segment_dense.c), so the weighing costs at most that x run length. */
-#define RSS_PENALTY 32.0
 
 static double piece_rss(const seg_section *s, int kind, size_t first, size_t n) {
   return kind == LINE ? bsfit__moments_line_rss(s->mom, first, n)
@@ -1108,6 +1107,7 @@ static size_t finish_pieces(const seg_section *s, bsfit_piece *p, seg_model *md,
   short_runs(s, p, md, np);
   if (s->noisy) np = arcs_take_lines(s, p, md, np);
   rebalance(s, p, md, np);
+  bsfit__lines_to_fillets(s, p, md, np);
   if (np == 1 && s->closed && p[0].kind == ARC &&
       goes_round(s, &p[0], &md[0])) { /* a whole circle */
     bsfit__model_foot(&md[0], sample(s, p[0].first), p[0].start, p[0].t_start);
@@ -1203,6 +1203,7 @@ bsfit_err bsfit_segment(const double *pts, size_t m, int dim, const bsfit_segmen
     goto done;
   }
   count_gaps(&s);
+  s.penalty = RSS_PENALTY;
   if (s.noisy && m > BSFIT__DENSE_MOST) {
     np = bsfit__dense_cover(&s, &o, buf, &e, st);
     if (e != BSFIT_OK) goto done;

@@ -11,9 +11,10 @@
 
 /* The radius of the circle tangent to two lines (its centre V + u k r) that fits F's
 ** samples best: Gauss-Newton on the geometric distances, from r. Its residual sum of
-** squares into *rss; -1 when it fails. */
+** squares into *rss, and the information of the radius (sum of the squared derivatives of
+** the distances: its variance is sigma^2 over it) into *info; -1 when it fails. */
 static double fillet_radius(const seg_section *s, const bsfit_piece *F, const double *V,
-                            const double *u, double k, double r, double *rss) {
+                            const double *u, double k, double r, double *rss, double *info) {
   int it;
   size_t j;
   for (it = 0; it < 20; it++) {
@@ -28,6 +29,7 @@ static double fillet_radius(const seg_section *s, const bsfit_piece *F, const do
       *rss += e * e;
     }
     if (!(h > 0)) return -1.0;
+    *info = h;
     step = -g / h;
     r += step;
     if (!(r > 0)) return -1.0;
@@ -36,27 +38,28 @@ static double fillet_radius(const seg_section *s, const bsfit_piece *F, const do
   return r;
 }
 
-/* A fillet: an arc meeting a line tangentially at both ends. Its circle is then known
-** from the two lines up to its radius (its centre on the bisector of their corner), so
-** it is refitted with that one unknown: a short noisy arc alone leaves its radius
-** uncertain by many percent, the lines fix all but one of its parameters. But the lines
-** are extrapolated to their corner, and an error there moves the radius by 1/(k - 1)
-** times as much (2.4 at a right angle): the refit is taken only when its samples do not
-** tell against it, i.e. it adds at most 9 sigma^2 to their residual (the chi-square of its
-** two fewer parameters at 99%). The tangent points move to the new circle. */
-static void refit_fillet(const seg_section *s, bsfit_piece *A, const seg_model *ma, bsfit_piece *F,
-                         seg_model *mf, bsfit_piece *B, const seg_model *mb) {
-  double V[2], u[2], k, r, c[2], f[2], t[2], rms = 0, un, cosphi, rss;
-  if (!bsfit__meet_lines(&ma->line, &mb->line, V)) return;
+/* The frame of a fillet between lines A and B: their corner V, the unit bisector u into
+** the turn and k = 1 / sin(half the inner angle), so that the circle of radius r tangent
+** to both is centred at V + u k r. 0 when the lines are parallel or turn back. */
+static int fillet_frame(const seg_model *ma, const seg_model *mb, double *V, double *u, double *k) {
+  double un, cosphi;
+  if (!bsfit__meet_lines(&ma->line, &mb->line, V)) return 0;
   u[0] = mb->line.d[0] - ma->line.d[0];
   u[1] = mb->line.d[1] - ma->line.d[1];
   un = hypot(u[0], u[1]);
   cosphi = -(ma->line.d[0] * mb->line.d[0] + ma->line.d[1] * mb->line.d[1]);
-  if (!(un > 1e-12) || cosphi >= 1 - 1e-12) return;
+  if (!(un > 1e-12) || cosphi >= 1 - 1e-12) return 0;
   u[0] /= un, u[1] /= un;
-  k = 1.0 / sin(0.5 * acos(fmax(-1.0, fmin(1.0, cosphi))));
-  r = fillet_radius(s, F, V, u, k, mf->circle.r, &rss);
-  if (!(r > 0) || rss - F->rms * F->rms * (double)F->count > 9.0 * s->unit * s->unit) return;
+  *k = 1.0 / sin(0.5 * acos(fmax(-1.0, fmin(1.0, cosphi))));
+  return 1;
+}
+
+/* F's circle becomes the one of radius r tangent to A and B (frame V, u, k): its model,
+** centre, radius, ends on both lines, tangents there, and its residual. */
+static void set_fillet(const seg_section *s, bsfit_piece *A, const seg_model *ma, bsfit_piece *F,
+                       seg_model *mf, bsfit_piece *B, const seg_model *mb, const double *V,
+                       const double *u, double k, double r) {
+  double c[2], f[2], t[2], rms = 0;
   c[0] = V[0] + u[0] * k * r;
   c[1] = V[1] + u[1] * k * r;
   mf->circle.c[0] = c[0], mf->circle.c[1] = c[1], mf->circle.r = r;
@@ -69,6 +72,23 @@ static void refit_fillet(const seg_section *s, bsfit_piece *A, const seg_model *
   bsfit__model_foot(mf, F->end, f, F->t_end);
   F->max = bsfit__circle_max(&mf->circle, &(bsfit__run){s->pts, s->m, F->first, F->count}, &rms);
   F->rms = rms;
+}
+
+/* A fillet: an arc meeting a line tangentially at both ends. Its circle is then known
+** from the two lines up to its radius (its centre on the bisector of their corner), so
+** it is refitted with that one unknown: a short noisy arc alone leaves its radius
+** uncertain by many percent, the lines fix all but one of its parameters. But the lines
+** are extrapolated to their corner, and an error there moves the radius by 1/(k - 1)
+** times as much (2.4 at a right angle): the refit is taken only when its samples do not
+** tell against it, i.e. it adds at most 9 sigma^2 to their residual (the chi-square of its
+** two fewer parameters at 99%). The tangent points move to the new circle. */
+static void refit_fillet(const seg_section *s, bsfit_piece *A, const seg_model *ma, bsfit_piece *F,
+                         seg_model *mf, bsfit_piece *B, const seg_model *mb) {
+  double V[2], u[2], k, r, rss, info;
+  if (!fillet_frame(ma, mb, V, u, &k)) return;
+  r = fillet_radius(s, F, V, u, k, mf->circle.r, &rss, &info);
+  if (!(r > 0) || rss - F->rms * F->rms * (double)F->count > 9.0 * s->unit * s->unit) return;
+  set_fillet(s, A, ma, F, mf, B, mb, V, u, k, r);
 }
 
 /* Samples of line A past its tangent point with fillet F (their feet beyond A's end along
@@ -88,6 +108,86 @@ static size_t claim_for_fillet(const seg_section *s, bsfit_piece *A, const seg_m
     B->first = (B->first + 1) % s->m, B->count--, F->count++, moved++;
   }
   return moved;
+}
+
+/* A fillet is claimed only where its samples fix its radius to 1% (one standard error of
+** the radius, the lines held), so that its radius is within the 2% the issue asks at two:
+** a 60-degree fillet of 10 samples at noise 1.3% of its radius is not (its centre moves
+** along the bisector with the radius, its samples barely tell the two apart) and was 5%
+** off; such a fillet stays two corners, which the pieces' tests soften into a bend. */
+#define FILLET_RADIUS_SE 0.01
+
+/* the cross product of two lines' directions: the sign of the turn from a to b */
+static double turn_sign(const seg_model *a, const seg_model *b) {
+  return a->line.d[0] * b->line.d[1] - a->line.d[1] * b->line.d[0];
+}
+
+/* A noisy fillet of few samples is cut into a short line X between two corners: two chords
+** follow a 60-degree fillet of 5 samples within the noise, and the cover, which prices an
+** arc at 3 parameters, finds them cheaper than the arc. Tangent to the lines A and B on
+** either side, the fillet has one parameter (its radius) against X's two: X becomes it when
+** its samples, within the tolerance of it, leave it no more than 2 sigma^2 more residual
+** (Akaike's price of the parameter it saves), and they fix its radius (FILLET_RADIUS_SE).
+** Both corners must turn the way A turns into B. (The cover's own price, 32 sigma^2, took
+** the square ends of letters' stems for semicircles: 4 samples across a stem 50 sigma wide
+** fit one within 20 sigma^2.) Returns whether X became the fillet. */
+static int line_to_fillet(const seg_section *s, bsfit_piece *A, const seg_model *ma,
+                          bsfit_piece *X, seg_model *mx, bsfit_piece *B, const seg_model *mb) {
+  double V[2], u[2], k, r, rss, info = 0, turn = turn_sign(ma, mb);
+  const double *q = sample(s, X->first + X->count / 2);
+  seg_model arc = *mx;
+  bsfit_piece F = *X, Af = *A, Bf = *B;
+  if (turn_sign(ma, mx) * turn <= 0 || turn_sign(mx, mb) * turn <= 0) return 0;
+  if (!fillet_frame(ma, mb, V, u, &k) || !(k - 1 > 1e-6)) return 0;
+  r = fillet_radius(s, X, V, u, k, hypot(q[0] - V[0], q[1] - V[1]) / (k - 1), &rss, &info);
+  if (!(r > 0) || !(s->unit <= FILLET_RADIUS_SE * r * sqrt(info))) return 0;
+  if (rss > X->rms * X->rms * (double)X->count + 2.0 * s->unit * s->unit) return 0;
+  arc.kind = F.kind = ARC;
+  arc.orient = turn > 0 ? 1.0 : -1.0;
+  set_fillet(s, &Af, ma, &F, &arc, &Bf, mb, V, u, k, r);
+  if (!(F.max <= s->tol)) return 0;
+  *A = Af, *B = Bf, *X = F, *mx = arc;
+  return 1;
+}
+
+/* Does line md touch circle C (its centre r from it, within twice the tolerance, as the
+** joins tell a tangent join)? */
+static int touches(const seg_section *s, const seg_model *md, const bsfit__circle *C) {
+  return fabs(bsfit__line_dist(&md->line, C->c) - C->r) <= 2 * s->tol;
+}
+
+/* An arc X between lines A and B whose free circle misses the tangency to one of them (a
+** deep fillet of 4 to 6 samples, its radius right to a percent, met A at a corner of a few
+** degrees): it becomes the fillet tangent to both when that adds at most 9 sigma^2 to its
+** residual (the chi-square of its two fewer parameters at 99%, as refit_fillet) and its
+** samples fix its radius (FILLET_RADIUS_SE). Returns whether it did. */
+static int arc_to_fillet(const seg_section *s, bsfit_piece *A, const seg_model *ma,
+                         bsfit_piece *X, seg_model *mx, bsfit_piece *B, const seg_model *mb) {
+  double V[2], u[2], k, r, rss, info = 0, turn = turn_sign(ma, mb);
+  bsfit_piece F = *X, Af = *A, Bf = *B;
+  seg_model arc = *mx;
+  if (mx->orient * turn <= 0 || (touches(s, ma, &mx->circle) && touches(s, mb, &mx->circle)))
+    return 0;
+  if (!fillet_frame(ma, mb, V, u, &k)) return 0;
+  r = fillet_radius(s, X, V, u, k, mx->circle.r, &rss, &info);
+  if (!(r > 0) || !(s->unit <= FILLET_RADIUS_SE * r * sqrt(info))) return 0;
+  if (rss > X->rms * X->rms * (double)X->count + 9.0 * s->unit * s->unit) return 0;
+  set_fillet(s, &Af, ma, &F, &arc, &Bf, mb, V, u, k, r);
+  if (!(F.max <= s->tol)) return 0;
+  *A = Af, *B = Bf, *X = F, *mx = arc;
+  return 1;
+}
+
+void bsfit__lines_to_fillets(const seg_section *s, bsfit_piece *p, seg_model *md, size_t np) {
+  size_t i;
+  if (!s->noisy || np < 3) return;
+  for (i = 0; i < np; i++) {
+    size_t ia = (i + np - 1) % np, ib = (i + 1) % np;
+    if (!s->closed && (i == 0 || i + 1 == np)) continue;
+    if (p[ia].kind != LINE || p[ib].kind != LINE) continue;
+    if (p[i].kind == LINE) line_to_fillet(s, &p[ia], &md[ia], &p[i], &md[i], &p[ib], &md[ib]);
+    if (p[i].kind == ARC) arc_to_fillet(s, &p[ia], &md[ia], &p[i], &md[i], &p[ib], &md[ib]);
+  }
 }
 
 void bsfit__refit_fillets(const seg_section *s, bsfit_piece *p, seg_model *md, size_t np) {

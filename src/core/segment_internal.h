@@ -55,6 +55,10 @@ static inline size_t distinct(const seg_section *s, int kind, size_t first, size
   return span + 1 < (double)moved ? (size_t)span + 1 : moved;
 }
 
+/* sigma^2 per parameter a noisy cover's piece pays by default (segment.c, "costs its
+** residual as well") */
+#define RSS_PENALTY 32.0
+
 /* a model of either kind */
 typedef struct seg_model {
   int kind;
@@ -102,5 +106,10 @@ void bsfit__model_foot(const seg_model *md, const double *x, double *f, double *
 /* segment_fillets.c: each arc between two lines it meets tangentially is refitted with its
 ** circle tangent to both; under noise it first takes their samples past its tangent points */
 void bsfit__refit_fillets(const seg_section *s, bsfit_piece *p, seg_model *md, size_t np);
+
+/* segment_fillets.c: under noise, a short line between two lines it meets at corners
+** turning the same way becomes the fillet tangent to both, when that explains its samples
+** for one parameter fewer (before the ends are placed: the joins then find it tangent) */
+void bsfit__lines_to_fillets(const seg_section *s, bsfit_piece *p, seg_model *md, size_t np);
 
 #endif
