@@ -70,7 +70,7 @@ end
 
 local function closed(ctx) return common.closed(ctx) end
 
-local size_of, count_range, gap_decision
+local size_of, count_range, gap_decision, doubt_closure
 
 -- Adds a warning for rep.warnings.
 local function warn(ctx, msg)
@@ -351,7 +351,7 @@ end
 --     the pieces agrees with the windows', the pieces hold the samples and meet, their
 --     corners are confirmed, their one curve stays within the noise).
 -- Returns the pieces, or {} (one smooth curve).
-function steps.segment(P, ctx)
+local function segment_pieces(P, ctx)
   -- Huber reweighting asks for a fit that discounts samples by their distance: the pieces
   -- follow every sample they hold, so such sections take the smooth path
   if P:dim() ~= 2 or ctx.settings.robust then return {} end
@@ -370,6 +370,18 @@ function steps.segment(P, ctx)
   ctx.sharp_disagreed = found.disagreed -- for the assemble step (pieces_for_misfit)
   if pieces then ctx.segment_sigma, ctx.sharp_curve = found.sigma, found.curve end
   return pieces or {}
+end
+
+function steps.segment(P, ctx)
+  local pieces = segment_pieces(P, ctx)
+  -- a closure the ends step found clear by the spacing alone, which the pieces make only by
+  -- running on far past both end samples (sharp.closure_unsampled): three sides of a
+  -- quadrilateral, their gap like a step, closed as a triangle no sample saw
+  if ctx.closing and closed(ctx) and not ctx.closed_ambiguous and #pieces > 1 and
+     sharp.closure_unsampled(P, pieces) then
+    doubt_closure(ctx, "; the pieces close it only past both end samples")
+  end
+  return pieces
 end
 
 function steps.params(P, ctx)
@@ -433,6 +445,16 @@ local function chord_crosses(P)
   return false
 end
 
+-- The doubt of an open-or-closed decision the ends step made (ctx.closing): reported
+-- (rep.closed_ambiguous) and said, with `why` (appended to the gap and steps).
+function doubt_closure(ctx, why)
+  local c = ctx.closing
+  ctx.closed_ambiguous = true
+  warn(ctx, ("open or closed is ambiguous (gap %.3g between the last and first points, steps "
+    .. "%.3g near them%s): fitted %s; say --open or --closed"):format(c.gap, c.hloc, why,
+    closed(ctx) and "closed" or "open"))
+end
+
 -- Open or closed (setting closed = "auto", the default): from the gap between the last
 -- and the first point against the steps next to them (the two at each end, h_loc: a
 -- closed section's closing step is like its neighbours, while sections sampled sparsely
@@ -444,7 +466,9 @@ end
 -- both ends (turns by at most 100 degrees from the last step and into the first: an open
 -- run's ends point away from each other), as ambiguous. Ambiguous decisions are reported
 -- (rep.closed_ambiguous, a warning). Lines and arcs that cover the section
--- and meet across the gap without a detour (sharp.closing_pieces) close it. A gap longer
+-- and meet across the gap without a detour (sharp.closing_pieces) close it, with a doubt
+-- when they run on past both end samples into the gap far beyond their own steps
+-- (sharp.closure_unsampled). A gap longer
 -- than CLOSING_CLEAR times the longest other step leaves a doubt, however it is closed; a
 -- closing chord that crosses the samples' own path (chord_crosses) opens the section,
 -- with a doubt. closed = true or false is taken as given.
@@ -487,7 +511,8 @@ function steps.ends(P, ctx)
   if (not closed_ or not clear) and P:dim() == 2 and m >= 6 then
     local pieces, exact = sharp.closing_pieces(P, gap)
     if pieces then
-      closed_, clear = true, gap <= CLOSING_CLEAR * all[#all]
+      closed_ = true
+      clear = gap <= CLOSING_CLEAR * all[#all] and not sharp.closure_unsampled(P, pieces)
       if exact and P == all_points then ctx.cache.exact_pieces = pieces end
     end
   end
@@ -496,12 +521,9 @@ function steps.ends(P, ctx)
   local crossing = closed_ and P:dim() == 2 and gap > 1.5 * hmed and chord_crosses(P)
   if crossing then closed_, clear = false, false end
   ctx.settings.closed = closed_
+  ctx.closing = { gap = gap, hloc = hloc } -- decided here (see doubt_closure)
   if not clear then
-    ctx.closed_ambiguous = true
-    warn(ctx, ("open or closed is ambiguous (gap %.3g between the last and first points, steps "
-      .. "%.3g near them%s): fitted %s; say --open or --closed"):format(gap, hloc,
-      crossing and "; closing it would cross the samples' own path" or "",
-      closed_ and "closed" or "open"))
+    doubt_closure(ctx, crossing and "; closing it would cross the samples' own path" or "")
   end
   return closed_ and "closed" or "open"
 end
