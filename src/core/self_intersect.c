@@ -12,6 +12,7 @@
 */
 #include "internal.h"
 
+#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 
@@ -81,6 +82,23 @@ static int by_value(const void *a, const void *b) {
   return x < y ? -1 : x > y;
 }
 
+/* Drops from the sorted u[0..n) the parameters within a few ulps of the one kept before
+** (of a periodic curve's start, at its end), and returns how many are left. Between two
+** knots where the curve may turn, both series of corner_params reach the middle of the
+** span, computed twice with different rounding: two samples an ulp apart leave an edge of
+** no length between two edges that touch there, and the rounding of their cross products
+** read as a crossing (an exact outline 392 sizes from the origin, reported crossing). */
+static size_t distinct_params(double *u, size_t n, double a, double b, int periodic) {
+  double tol = 8 * DBL_EPSILON * fmax(fabs(a), fmax(fabs(b), b - a));
+  size_t i, kept = 0;
+  for (i = 0; i < n; i++) {
+    if (kept > 0 && u[i] - u[kept - 1] <= tol) continue;
+    if (periodic && kept > 0 && b - u[i] <= tol) continue;
+    u[kept++] = u[i];
+  }
+  return kept;
+}
+
 /* The sample parameters, sorted in [a, b] ([a, b) when periodic): the k even ones merged
 ** with those near the corners (wrapped into the period, sorted: far fewer). Returns their
 ** count; 0 on no memory. */
@@ -108,7 +126,7 @@ static size_t sample_params(const bsfit_curve *c, size_t k, double **out, size_t
     if (take_near) j--;
     else i--;
   }
-  return n;
+  return distinct_params(u, n, a, b, c->periodic);
 }
 
 static size_t sweep(const double *S, edge *E, size_t ne, int closed, size_t *first,
@@ -129,6 +147,19 @@ static size_t sweep(const double *S, edge *E, size_t ne, int closed, size_t *fir
     }
   }
   return found;
+}
+
+/* Do the first and last of the k samples S meet, to the rounding of the coordinates? A
+** curve joined from pieces that close (its last control point its first) evaluates at
+** its end an ulp or two from its start: taken as open, its last edge touched its first
+** there, and the rounding of their cross products read as a crossing (test_self_intersect:
+** 6 of 400 convex outlines of lines and fillets). */
+static int ends_meet(const double *S, size_t k) {
+  double scale = 0;
+  size_t i;
+  for (i = 0; i < 2 * k; i++) scale = fmax(scale, fabs(S[i]));
+  return fabs(S[0] - S[2 * (k - 1)]) <= 16 * DBL_EPSILON * scale &&
+         fabs(S[1] - S[2 * (k - 1) + 1]) <= 16 * DBL_EPSILON * scale;
 }
 
 bsfit_err bsfit_curve_self_intersections(const bsfit_curve *c, size_t k, size_t *crossings,
@@ -162,7 +193,7 @@ bsfit_err bsfit_curve_self_intersections(const bsfit_curve *c, size_t k, size_t 
   e = bsfit_curve_eval_many(c, u, k, S, st);
   if (e != BSFIT_OK) goto done;
   /* a closed curve (periodic, or whose ends meet) is a closed polyline */
-  closed = c->periodic || (S[0] == S[2 * (k - 1)] && S[1] == S[2 * (k - 1) + 1]);
+  closed = c->periodic || ends_meet(S, k);
   if (closed && !c->periodic) k--; /* the last sample repeats the first */
   if (closed) S[2 * k] = S[0], S[2 * k + 1] = S[1];
   ne = closed ? k : k - 1;

@@ -1,0 +1,120 @@
+-- test_self_intersect.lua: bs.geom.self_intersections finds no crossing on curves that
+-- cannot cross (convex and star-shaped outlines of lines and fillets, joined exactly), however far from
+-- the origin and at whatever scale, and finds the crossing of a bowtie made of the same
+-- pieces. The kernel samples the curve ever closer to each knot where it may turn,
+-- from both sides: between two such knots both series reach the span's middle, computed
+-- twice with different rounding, and two samples an ulp apart made a false crossing of the
+-- edges on either side of the one between them (an exact outline 392 sizes from the
+-- origin was reported crossing itself).
+local T = require "tap"
+local bs = require "bsfit"
+local shapes = require "shapes_sharp"
+local auto = require "bsfit.strategy.auto"
+
+-- the one curve of an outline's primitives (bs.curve.join), moved by (dx, dy) and scaled by s
+local function curve_of(o, s, dx, dy)
+  local parts, lengths = {}, {}
+  local function at(p) return { s * p[1] + dx, s * p[2] + dy } end
+  for _, q in ipairs(o.prims) do
+    if q.kind == "line" then
+      parts[#parts + 1] = bs.curve.line(at(q.a), at(q.b))
+      lengths[#lengths + 1] = s * shapes.dist(q.a, q.b)
+    else
+      parts[#parts + 1] = bs.curve.arc { centre = at(q.c), radius = s * q.r, start = q.a0, sweep = q.sweep }
+      lengths[#lengths + 1] = s * q.r * math.abs(q.sweep)
+    end
+  end
+  return bs.curve.join(parts, lengths)
+end
+
+-- a random polygon with fillets at random vertices: convex, or (star) its vertices at
+-- radii 1 and 0.6 in turn, a star-shaped outline that cannot cross itself either
+local function random_outline(uniform, star)
+  local n, v, r = 3 + math.floor(6 * uniform()), {}, {}
+  if star then n = 2 * n end
+  local a0 = 2 * math.pi * uniform()
+  for k = 1, n do
+    local a = a0 + 2 * math.pi * (k - 1 + 0.3 * (uniform() - 0.5)) / n
+    local R = star and k % 2 == 0 and 0.6 or 1
+    v[k] = { R * math.cos(a), R * math.sin(a) }
+  end
+  for k = 1, n do
+    local p, q, w = v[(k - 2) % n + 1], v[k], v[k % n + 1]
+    local d1, d2 = { q[1] - p[1], q[2] - p[2] }, { w[1] - q[1], w[2] - q[2] }
+    local l1, l2 = math.sqrt(d1[1] ^ 2 + d1[2] ^ 2), math.sqrt(d2[1] ^ 2 + d2[2] ^ 2)
+    local turn = math.acos(math.max(-1, math.min(1, (d1[1] * d2[1] + d1[2] * d2[2]) / (l1 * l2))))
+    r[k] = (star or uniform() < 0.5) and math.min(l1, l2) / 3 / math.tan(turn / 2) * uniform() or 0
+  end
+  return shapes.filleted(v, r)
+end
+
+T.test("outlines of lines and fillets that cannot cross, far from the origin: no crossing", function()
+  local uniform = shapes.rng(9090)
+  local false_crossings = {}
+  for case = 1, 400 do
+    local o = random_outline(uniform, case % 2 == 0)
+    local s = 10 ^ (6 * uniform() - 3)
+    local far = s * 10 ^ (3 * uniform())
+    local C = curve_of(o, s, far * math.cos(case), far * math.sin(case))
+    for _, k in ipairs { 200, 2000 } do
+      local n = bs.geom.self_intersections(C, k)
+      if n > 0 then
+        false_crossings[#false_crossings + 1] = ("case %d (%d pieces, scale %.3g, %.3g from the origin, k %d)")
+          :format(case, #o.prims, s, far, k)
+      end
+    end
+  end
+  T.ok(#false_crossings == 0, #false_crossings .. " false crossings: " .. table.concat(false_crossings, "; "))
+end)
+
+-- Such outlines' exact samples through auto, whose curve is periodic (its seam a knot
+-- where it may turn, like every join): no crossing reported.
+T.test("their exact samples far from the origin: auto reports no crossing", function()
+  local uniform = shapes.rng(3131)
+  local reported = {}
+  for case = 1, tonumber(os.getenv("NCASE") or 150) do
+    local o = random_outline(uniform, case % 2 == 0)
+    local s = 10 ^ (6 * uniform() - 3)
+    local far = s * 10 ^ (3 * uniform())
+    local pts = {}
+    for i, p in ipairs(shapes.sample(o, 5 + case % 6)) do
+      pts[i] = { s * p[1] + far * math.cos(case), s * p[2] + far * math.sin(case) }
+    end
+    local C, rep = auto.run(bs.points.new(pts))
+    if rep.crossings > 0 or bs.geom.self_intersections(C, 2000) > 0 then
+      reported[#reported + 1] = ("case %d (scale %.3g, %.3g from the origin)"):format(case, s, far)
+    end
+  end
+  T.ok(#reported == 0, #reported .. " crossings reported: " .. table.concat(reported, "; "))
+end)
+
+-- A bowtie (two of its sides cross, away from any sample), its outer corners filleted.
+-- (A crossing exactly through a sample of both edges is not seen: the edges only touch
+-- there. A symmetric bowtie's diagonals cross at their middles, where the samples near
+-- its corners meet.)
+T.test("a bowtie of lines and fillets crosses itself, wherever it lies", function()
+  local uniform = shapes.rng(4711)
+  for case = 1, 40 do
+    local r = 0.05 + 0.15 * uniform()
+    local o = shapes.filleted({ { 1, -1 }, { 3, 1.3 }, { 1, 1 }, { 3.2, -1 } }, { 0, r, 0, r })
+    local s = 10 ^ (4 * uniform() - 2)
+    local far = s * 10 ^ (3 * uniform())
+    local C = curve_of(o, s, far, -far)
+    T.ok(bs.geom.self_intersections(C, 2000) > 0, ("bowtie %d at %.3g, scale %.3g: no crossing found")
+      :format(case, far, s))
+  end
+end)
+
+-- A non-convex filleted polygon, 115 exact samples 392 sizes from the origin (held out
+-- from a probe of 2800 clean outlines): its curve from auto is exact (to 2e-13 of its
+-- size) and was reported crossing itself: the samples near its seam and near its last
+-- join both reached the middle of the span between, an ulp apart.
+T.test("an exact outline far from the origin is not reported crossing itself", function()
+  local dir = ((arg and arg[1] or ""):match("^(.*)[/\\]") or ".") .. "/../data/sections/"
+  local P = assert(bs.points.read(dir .. "far_filleted_polygon.csv"))
+  local C, rep = auto.run(P)
+  T.eq(rep.crossings, 0, "crossings reported")
+  for _, k in ipairs { 200, 2000, 20000 } do
+    T.eq((bs.geom.self_intersections(C, k)), 0, "crossings at " .. k .. " samples")
+  end
+end)
