@@ -158,6 +158,29 @@ local letters = {
 
 function M.letter(name) return M.filleted(letters[name]) end
 
+-- A random polygon of n vertices (counter-clockwise, spread round a circle, each a third
+-- of its share of the turn off even) with fillets, as the caller draws them: radius(k) the
+-- k-th vertex's distance from the centre (1 when nil); fillet(room) the radius of the
+-- fillet at a vertex where one of radius `room` would take a third of each side beside it
+-- (0: a sharp corner). uniform: the caller's draws (shapes.rng).
+function M.random_filleted(uniform, n, radius, fillet)
+  local v, r = {}, {}
+  local a0 = 2 * pi * uniform()
+  for k = 1, n do
+    local a = a0 + 2 * pi * (k - 1 + 0.3 * (uniform() - 0.5)) / n
+    local R = radius and radius(k) or 1
+    v[k] = { R * math.cos(a), R * math.sin(a) }
+  end
+  for k = 1, n do
+    local p, q, w = v[(k - 2) % n + 1], v[k], v[k % n + 1]
+    local d1, d2 = { q[1] - p[1], q[2] - p[2] }, { w[1] - q[1], w[2] - q[2] }
+    local l1, l2 = math.sqrt(d1[1] ^ 2 + d1[2] ^ 2), math.sqrt(d2[1] ^ 2 + d2[2] ^ 2)
+    local turn = math.acos(math.max(-1, math.min(1, (d1[1] * d2[1] + d1[2] * d2[2]) / (l1 * l2))))
+    r[k] = fillet(math.min(l1, l2) / 3 / math.tan(turn / 2))
+  end
+  return M.filleted(v, r)
+end
+
 -- A rounded rectangle w x h with fillets of radius r.
 function M.rounded_rect(w, h, r)
   return M.filleted({ { 0, 0 }, { w, 0 }, { w, h }, { 0, h } }, { r, r, r, r })

@@ -8,25 +8,11 @@ local T = require "tap"
 local bs = require "bsfit"
 local shapes = require "shapes_sharp"
 
--- a random convex polygon (counter-clockwise) with fillets at random vertices, each taking
--- at most a third of the sides it joins
+-- a random convex polygon of 3 to 7 vertices, 8 to 12 from its centre, 60% of them filleted
 local function random_outline(uniform)
-  local n, v, r = 3 + math.floor(5 * uniform()), {}, {}
-  local a0 = 2 * math.pi * uniform()
-  for k = 1, n do
-    local a = a0 + 2 * math.pi * (k - 1 + 0.3 * (uniform() - 0.5)) / n
-    local R = 10 * (0.8 + 0.4 * uniform())
-    v[k] = { R * math.cos(a), R * math.sin(a) }
-  end
-  for k = 1, n do
-    local p, q, w = v[(k - 2) % n + 1], v[k], v[k % n + 1]
-    local d1, d2 = { q[1] - p[1], q[2] - p[2] }, { w[1] - q[1], w[2] - q[2] }
-    local l1, l2 = math.sqrt(d1[1] ^ 2 + d1[2] ^ 2), math.sqrt(d2[1] ^ 2 + d2[2] ^ 2)
-    local turn = math.acos((d1[1] * d2[1] + d1[2] * d2[2]) / (l1 * l2))
-    local room = math.min(l1, l2) / 3 / math.tan(turn / 2)
-    r[k] = uniform() < 0.6 and room * (0.4 + 0.6 * uniform()) or 0
-  end
-  return shapes.filleted(v, r)
+  return shapes.random_filleted(uniform, 3 + math.floor(5 * uniform()),
+    function() return 10 * (0.8 + 0.4 * uniform()) end,
+    function(room) return uniform() < 0.6 and room * (0.4 + 0.6 * uniform()) or 0 end)
 end
 
 -- How well n evenly spread samples fix the radius of fillet q with its lines known: the

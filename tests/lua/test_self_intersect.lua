@@ -27,25 +27,14 @@ local function curve_of(o, s, dx, dy)
   return bs.curve.join(parts, lengths)
 end
 
--- a random polygon with fillets at random vertices: convex, or (star) its vertices at
--- radii 1 and 0.6 in turn, a star-shaped outline that cannot cross itself either
+-- a random polygon of 3 to 8 vertices with fillets at half of them: convex, or (star)
+-- twice as many vertices at radii 1 and 0.6 in turn, all filleted, a star-shaped outline
+-- that cannot cross itself either
 local function random_outline(uniform, star)
-  local n, v, r = 3 + math.floor(6 * uniform()), {}, {}
-  if star then n = 2 * n end
-  local a0 = 2 * math.pi * uniform()
-  for k = 1, n do
-    local a = a0 + 2 * math.pi * (k - 1 + 0.3 * (uniform() - 0.5)) / n
-    local R = star and k % 2 == 0 and 0.6 or 1
-    v[k] = { R * math.cos(a), R * math.sin(a) }
-  end
-  for k = 1, n do
-    local p, q, w = v[(k - 2) % n + 1], v[k], v[k % n + 1]
-    local d1, d2 = { q[1] - p[1], q[2] - p[2] }, { w[1] - q[1], w[2] - q[2] }
-    local l1, l2 = math.sqrt(d1[1] ^ 2 + d1[2] ^ 2), math.sqrt(d2[1] ^ 2 + d2[2] ^ 2)
-    local turn = math.acos(math.max(-1, math.min(1, (d1[1] * d2[1] + d1[2] * d2[2]) / (l1 * l2))))
-    r[k] = (star or uniform() < 0.5) and math.min(l1, l2) / 3 / math.tan(turn / 2) * uniform() or 0
-  end
-  return shapes.filleted(v, r)
+  local n = 3 + math.floor(6 * uniform())
+  return shapes.random_filleted(uniform, star and 2 * n or n,
+    star and function(k) return k % 2 == 0 and 0.6 or 1 end,
+    function(room) return (star or uniform() < 0.5) and room * uniform() or 0 end)
 end
 
 T.test("outlines of lines and fillets that cannot cross, far from the origin: no crossing", function()
