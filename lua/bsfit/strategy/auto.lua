@@ -191,7 +191,8 @@ end
 -- guard may merge spans, widen_corner_spans drop knots).
 local function knots_for(ctx, n)
   local p = ctx.settings.degree
-  if ctx.anchors and not ctx.knot_params then -- the corners step was replaced
+  if ctx.anchors and not ctx.knot_params and not ctx.knots_on_samples then
+    -- the corners step was replaced
     anchors.knots(ctx, ctx.corner_positions or ctx.corners)
   end
   local u = ctx.knot_params or ctx.params
@@ -670,9 +671,20 @@ local function measure_weights(ctx, w, stride)
   return v
 end
 
+-- Anchors too few to give the fewest control points' spans two each (a sparse spiral
+-- whose windows read its curvature as noise, 4 sigma apart, left 5 anchors of 21 samples
+-- for 8 control points, and the knot placement raised): the knots go on the samples'
+-- parameters instead (the parameters keep the anchors).
+local function anchors_hold_knots(P, ctx)
+  if ctx.knot_params and #ctx.knot_params < 2 * count_range(P, ctx) then
+    ctx.knot_params, ctx.knot_breaks, ctx.knots_on_samples = nil, nil, true
+  end
+end
+
 function steps.count(P, ctx)
   if sharp_path(ctx) then return 0 end -- the assemble step's
   local m = #P
+  anchors_hold_knots(P, ctx)
   local n, nmax = count_range(P, ctx)
   local tol, sigma = ctx.settings.tol, ctx.sigma
   local floor = 1e-7 * size_of(P) -- clean data: no need to go below a relative 1e-7
