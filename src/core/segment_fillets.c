@@ -2,7 +2,9 @@
 ** segment_fillets.c
 ** Fillets of a segmentation: an arc between two lines it meets tangentially is refitted
 ** with its circle tangent to both (one unknown, its radius), and takes the samples of the
-** lines past its tangent points (docs/auto.md, step 8 "Fillets").
+** lines past its tangent points; under noise, the cover's misreadings of a fillet (a short
+** line between two corners, an arc that misses the tangency) become that fillet first
+** (docs/auto.md, step 8 "Fillets").
 */
 #include "segment_internal.h"
 
@@ -178,7 +180,7 @@ static int arc_to_fillet(const seg_section *s, bsfit_piece *A, const seg_model *
   return 1;
 }
 
-void bsfit__lines_to_fillets(const seg_section *s, bsfit_piece *p, seg_model *md, size_t np) {
+void bsfit__cover_fillets(const seg_section *s, bsfit_piece *p, seg_model *md, size_t np) {
   size_t i;
   if (!s->noisy || np < 3) return;
   for (i = 0; i < np; i++) {

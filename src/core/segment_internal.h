@@ -108,8 +108,9 @@ void bsfit__model_foot(const seg_model *md, const double *x, double *f, double *
 void bsfit__refit_fillets(const seg_section *s, bsfit_piece *p, seg_model *md, size_t np);
 
 /* segment_fillets.c: under noise, a short line between two lines it meets at corners
-** turning the same way becomes the fillet tangent to both, when that explains its samples
-** for one parameter fewer (before the ends are placed: the joins then find it tangent) */
-void bsfit__lines_to_fillets(const seg_section *s, bsfit_piece *p, seg_model *md, size_t np);
+** turning the same way, or an arc between two lines that misses the tangency to one, becomes
+** the fillet tangent to both where its samples allow (before the ends are placed: the
+** joins then find it tangent) */
+void bsfit__cover_fillets(const seg_section *s, bsfit_piece *p, seg_model *md, size_t np);
 
 #endif
