@@ -124,26 +124,24 @@ static double turn_sign(const seg_model *a, const seg_model *b) {
   return a->line.d[0] * b->line.d[1] - a->line.d[1] * b->line.d[0];
 }
 
-/* A noisy fillet of few samples is cut into a short line X between two corners: two chords
-** follow a 60-degree fillet of 5 samples within the noise, and the cover, which prices an
-** arc at 3 parameters, finds them cheaper than the arc. Tangent to the lines A and B on
-** either side, the fillet has one parameter (its radius) against X's two: X becomes it when
-** its samples, within the tolerance of it, leave it no more than 2 sigma^2 more residual
-** (Akaike's price of the parameter it saves), and they fix its radius (FILLET_RADIUS_SE).
-** Both corners must turn the way A turns into B. (The cover's own price, 32 sigma^2, took
-** the square ends of letters' stems for semicircles: 4 samples across a stem 50 sigma wide
-** fit one within 20 sigma^2.) Returns whether X became the fillet. */
-static int line_to_fillet(const seg_section *s, bsfit_piece *A, const seg_model *ma,
-                          bsfit_piece *X, seg_model *mx, bsfit_piece *B, const seg_model *mb) {
+/* X, between lines A and B, becomes the fillet tangent to both (its radius fitted from
+** r0; from X's middle sample when r0 is 0) when its samples fix the radius
+** (FILLET_RADIUS_SE), lie within the tolerance of it, and leave it at most `price` sigma^2
+** more residual than X's own model. Returns whether it did. */
+static int to_fillet(const seg_section *s, bsfit_piece *A, const seg_model *ma, bsfit_piece *X,
+                     seg_model *mx, bsfit_piece *B, const seg_model *mb, double r0,
+                     double price) {
   double V[2], u[2], k, r, rss, info = 0, turn = turn_sign(ma, mb);
-  const double *q = sample(s, X->first + X->count / 2);
   seg_model arc = *mx;
   bsfit_piece F = *X, Af = *A, Bf = *B;
-  if (turn_sign(ma, mx) * turn <= 0 || turn_sign(mx, mb) * turn <= 0) return 0;
   if (!fillet_frame(ma, mb, V, u, &k) || !(k - 1 > 1e-6)) return 0;
-  r = fillet_radius(s, X, V, u, k, hypot(q[0] - V[0], q[1] - V[1]) / (k - 1), &rss, &info);
+  if (!(r0 > 0)) {
+    const double *q = sample(s, X->first + X->count / 2);
+    r0 = hypot(q[0] - V[0], q[1] - V[1]) / (k - 1);
+  }
+  r = fillet_radius(s, X, V, u, k, r0, &rss, &info);
   if (!(r > 0) || !(s->unit <= FILLET_RADIUS_SE * r * sqrt(info))) return 0;
-  if (rss > X->rms * X->rms * (double)X->count + 2.0 * s->unit * s->unit) return 0;
+  if (rss > X->rms * X->rms * (double)X->count + price * s->unit * s->unit) return 0;
   arc.kind = F.kind = ARC;
   arc.orient = turn > 0 ? 1.0 : -1.0;
   set_fillet(s, &Af, ma, &F, &arc, &Bf, mb, V, u, k, r);
@@ -158,37 +156,31 @@ static int touches(const seg_section *s, const seg_model *md, const bsfit__circl
   return fabs(bsfit__line_dist(&md->line, C->c) - C->r) <= 2 * s->tol;
 }
 
-/* An arc X between lines A and B whose free circle misses the tangency to one of them (a
-** deep fillet of 4 to 6 samples, its radius right to a percent, met A at a corner of a few
-** degrees): it becomes the fillet tangent to both when that adds at most 9 sigma^2 to its
-** residual (the chi-square of its two fewer parameters at 99%, as refit_fillet) and its
-** samples fix its radius (FILLET_RADIUS_SE). Returns whether it did. */
-static int arc_to_fillet(const seg_section *s, bsfit_piece *A, const seg_model *ma,
-                         bsfit_piece *X, seg_model *mx, bsfit_piece *B, const seg_model *mb) {
-  double V[2], u[2], k, r, rss, info = 0, turn = turn_sign(ma, mb);
-  bsfit_piece F = *X, Af = *A, Bf = *B;
-  seg_model arc = *mx;
-  if (mx->orient * turn <= 0 || (touches(s, ma, &mx->circle) && touches(s, mb, &mx->circle)))
-    return 0;
-  if (!fillet_frame(ma, mb, V, u, &k)) return 0;
-  r = fillet_radius(s, X, V, u, k, mx->circle.r, &rss, &info);
-  if (!(r > 0) || !(s->unit <= FILLET_RADIUS_SE * r * sqrt(info))) return 0;
-  if (rss > X->rms * X->rms * (double)X->count + 9.0 * s->unit * s->unit) return 0;
-  set_fillet(s, &Af, ma, &F, &arc, &Bf, mb, V, u, k, r);
-  if (!(F.max <= s->tol)) return 0;
-  *A = Af, *B = Bf, *X = F, *mx = arc;
-  return 1;
-}
-
+/* The cover's two misreadings of a noisy fillet between lines A and B, each made the
+** fillet tangent to both (to_fillet):
+**   - a short line X between two corners: two chords follow a 60-degree fillet of 5
+**     samples within the noise, and the cover, which prices an arc at 3 parameters, finds
+**     them cheaper. The fillet has one parameter (its radius) against X's two: its price
+**     is 2 sigma^2 (Akaike's, for the parameter it saves). Both corners must turn the way
+**     A turns into B. (The cover's own price, 32 sigma^2, took the square ends of letters'
+**     stems for semicircles: 4 samples across a stem 50 sigma wide fit one within 20.)
+**   - an arc X whose free circle misses the tangency to A or B (a deep fillet of 4 to 6
+**     samples, its radius right to a percent, met A at a corner of a few degrees): 9 sigma^2,
+**     the chi-square of its two fewer parameters at 99% (as refit_fillet). */
 void bsfit__cover_fillets(const seg_section *s, bsfit_piece *p, seg_model *md, size_t np) {
   size_t i;
   if (!s->noisy || np < 3) return;
   for (i = 0; i < np; i++) {
     size_t ia = (i + np - 1) % np, ib = (i + 1) % np;
+    const seg_model *ma = &md[ia], *mb = &md[ib], *mx = &md[i];
+    double turn = turn_sign(ma, mb);
     if (!s->closed && (i == 0 || i + 1 == np)) continue;
     if (p[ia].kind != LINE || p[ib].kind != LINE) continue;
-    if (p[i].kind == LINE) line_to_fillet(s, &p[ia], &md[ia], &p[i], &md[i], &p[ib], &md[ib]);
-    if (p[i].kind == ARC) arc_to_fillet(s, &p[ia], &md[ia], &p[i], &md[i], &p[ib], &md[ib]);
+    if (p[i].kind == LINE && turn_sign(ma, mx) * turn > 0 && turn_sign(mx, mb) * turn > 0)
+      to_fillet(s, &p[ia], ma, &p[i], &md[i], &p[ib], mb, 0, 2.0);
+    else if (p[i].kind == ARC && mx->orient * turn > 0 &&
+        !(touches(s, ma, &mx->circle) && touches(s, mb, &mx->circle)))
+      to_fillet(s, &p[ia], ma, &p[i], &md[i], &p[ib], mb, mx->circle.r, 9.0);
   }
 }
 

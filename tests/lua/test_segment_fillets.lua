@@ -40,9 +40,9 @@ local function fillet_of(pieces, q)
   return nil
 end
 
--- Fillets whose samples fix their radius to half a percent: 78% came out as tangent arcs
--- within 2% of their radius before (the rest as a short line between two corners, or as
--- an arc meeting a line at a corner of a few degrees), 87% now.
+-- Fillets whose samples fix their radius to half a percent (406 of them): 87% came out as
+-- tangent arcs and 80% within 2% of their radius before (the rest as a short line between
+-- two corners, or as an arc meeting a line at a corner of a few degrees), 96% and 90% now.
 T.test("noisy fillets of 4 to 6 samples are arcs tangent to their lines, radii within 2%", function()
   local uniform = shapes.rng(4242)
   local fillets, tangent, exact = 0, 0, 0
