@@ -345,10 +345,11 @@ T.test("knots with corner breaks: multiplicity 3 at the corners, no empty span",
 end)
 
 -- Sparse noisy open runs (spirals, sines, arcs of 200 to 340 degrees; 8 to 32 samples;
--- noise 3e-4 to 3e-2 of their scale): a curve every time, auto or open. A spiral of 21
--- samples whose windows read its curvature as noise had its anchors (4 sigma apart) too
--- few for the fewest control points, and the knot placement raised an internal error ("5
--- parameters are fewer than 8 control points"); the knots now go on the samples there.
+-- noise 3e-4 to 3e-2 of their scale): a curve every time, auto, open, or with a count of
+-- 6 asked for. A spiral of 21 samples whose windows read its curvature as noise had its
+-- anchors (4 sigma apart) too few for the fewest control points, and the knot placement
+-- raised an internal error ("5 parameters are fewer than 8 control points"); the knots now
+-- go on the samples there, whatever the count.
 T.test("sparse noisy open runs: a curve, never an internal error", function()
   local uniform, gauss = synth.rng(2024)
   for k = 1, 600 do
@@ -368,10 +369,10 @@ T.test("sparse noisy open runs: a curve, never an internal error", function()
       end
       pts[j] = { x + 5 * sigma * gauss(), y + 5 * sigma * gauss() }
     end
-    for _, o in ipairs { {}, { closed = false } } do
+    for _, o in ipairs { {}, { closed = false }, { count = 6 } } do
       local ok, C, rep = pcall(auto.run, bs.points.new(pts), o)
       local what = ("run %d (kind %d, %d samples, noise %.2g, %s)"):format(k, kind, m, sigma,
-        o.closed == false and "open" or "auto")
+        o.count and "count 6" or o.closed == false and "open" or "auto")
       T.ok(ok, what .. ": " .. tostring(C))
       T.ok(rep.max < math.huge and C:distinct() >= 4, what .. ": a finite curve")
     end

@@ -191,14 +191,18 @@ end
 -- guard may merge spans, widen_corner_spans drop knots).
 local function knots_for(ctx, n)
   local p = ctx.settings.degree
-  if ctx.anchors and not ctx.knot_params and not ctx.knots_on_samples then
-    -- the corners step was replaced
+  if ctx.anchors and not ctx.knot_params then -- the corners step was replaced
     anchors.knots(ctx, ctx.corner_positions or ctx.corners)
   end
-  local u = ctx.knot_params or ctx.params
+  if closed(ctx) then n = math.max(n, #ctx.corners * p + 1) end -- each corner takes p knots
+  -- Anchors too few to give n control points' spans two each (a sparse spiral whose
+  -- windows read its curvature as noise, 4 sigma apart, left 5 anchors of 21 samples for
+  -- 8 control points, and the knot placement raised): the knots go on the samples'
+  -- parameters (the parameters keep the anchors).
+  local u, breaks = ctx.knot_params, ctx.knot_breaks
+  if not u or #u < 2 * n then u, breaks = ctx.params, nil end
+  breaks = breaks or ctx.corner_positions or ctx.corners
   if closed(ctx) then
-    n = math.max(n, #ctx.corners * p + 1) -- each corner takes p knots
-    local breaks = ctx.knot_breaks or ctx.corner_positions or ctx.corners
     if #breaks == 0 and #u >= 6 and #u < 12 then
       -- a handful of points without corners (6 samples of a D): the averaging rule
       -- around the period (the break placement's empty-span guard needs more points)
@@ -206,7 +210,7 @@ local function knots_for(ctx, n)
                                                      closed = true }), n
     end
     local K, N = common.ok("knots", bs.knots.breaks { params = u, degree = p, count = n,
-      breaks = ctx.knot_breaks or ctx.corner_positions or ctx.corners })
+      breaks = breaks })
     return widen_corner_spans(ctx, ctx.P, K, N)
   end
   return common.ok("knots", bs.knots.averaging { params = u, count = n, degree = p,
@@ -671,20 +675,9 @@ local function measure_weights(ctx, w, stride)
   return v
 end
 
--- Anchors too few to give the fewest control points' spans two each (a sparse spiral
--- whose windows read its curvature as noise, 4 sigma apart, left 5 anchors of 21 samples
--- for 8 control points, and the knot placement raised): the knots go on the samples'
--- parameters instead (the parameters keep the anchors).
-local function anchors_hold_knots(P, ctx)
-  if ctx.knot_params and #ctx.knot_params < 2 * count_range(P, ctx) then
-    ctx.knot_params, ctx.knot_breaks, ctx.knots_on_samples = nil, nil, true
-  end
-end
-
 function steps.count(P, ctx)
   if sharp_path(ctx) then return 0 end -- the assemble step's
   local m = #P
-  anchors_hold_knots(P, ctx)
   local n, nmax = count_range(P, ctx)
   local tol, sigma = ctx.settings.tol, ctx.sigma
   local floor = 1e-7 * size_of(P) -- clean data: no need to go below a relative 1e-7
