@@ -365,6 +365,7 @@ static double best_of_kind(const seg_section *s, size_t origin, size_t j, int ki
 ** parameter that explains nothing; 2 is Akaike's, ln m Schwarz's). Every start is tried,
 ** O(m x run length): noisy sections of more than BSFIT__DENSE_MOST samples are covered on
 ** every k-th sample (segment_dense.c), so the weighing costs at most that x run length. */
+#define RSS_PENALTY 32.0
 
 static double piece_rss(const seg_section *s, int kind, size_t first, size_t n) {
   return kind == LINE ? bsfit__moments_line_rss(s->mom, first, n)
@@ -1203,7 +1204,6 @@ bsfit_err bsfit_segment(const double *pts, size_t m, int dim, const bsfit_segmen
     goto done;
   }
   count_gaps(&s);
-  s.penalty = RSS_PENALTY;
   if (s.noisy && m > BSFIT__DENSE_MOST) {
     np = bsfit__dense_cover(&s, &o, buf, &e, st);
     if (e != BSFIT_OK) goto done;

@@ -55,10 +55,6 @@ static inline size_t distinct(const seg_section *s, int kind, size_t first, size
   return span + 1 < (double)moved ? (size_t)span + 1 : moved;
 }
 
-/* sigma^2 per parameter a noisy cover's piece pays by default (segment.c, "costs its
-** residual as well") */
-#define RSS_PENALTY 32.0
-
 /* a model of either kind */
 typedef struct seg_model {
   int kind;
