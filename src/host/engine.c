@@ -27,10 +27,12 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-/* The count hook fires every HOOK_CHUNK instructions (one C call per thousand VM
-** instructions costs well under 1%): lua_sethook's int count never overflows
-** whatever the budget, and a stop seen in one coroutine reaches the threads that
-** are not re-armed (see stop) within that many of their instructions. */
+/* With a budget, the count hook fires every HOOK_CHUNK instructions: lua_sethook's
+** int count never overflows whatever the budget, and a stop seen in one coroutine
+** reaches the threads that are not re-armed (see stop) within that many of their
+** instructions. Without a budget the main thread runs with no hook at all: any count
+** hook makes Lua 5.4 trace every instruction (luaG_traceexec), which halves the speed
+** of Lua code whatever the count; coroutines alone keep one (see hook_new_thread). */
 #define HOOK_CHUNK 1000
 #define ERRMSG_MIN 256
 
@@ -138,11 +140,14 @@ static void take_error(bsfit_engine *e) {
 
 static void engine_hook(lua_State *L, lua_Debug *ar);
 
-/* The count hook is armed in every call, budget or not: coroutines inherit the
-** hook of the thread that creates them, so this is how an interrupt reaches a
-** script looping inside a coroutine. */
+/* Arms the count hook of L for the budget left, or takes L's hook off when the engine
+** has no budget (this also clears a stale interrupt hook). */
 static void arm_budget(bsfit_engine *e, lua_State *L) {
-  e->armed = e->budget != 0 && e->left < HOOK_CHUNK ? (int)e->left : HOOK_CHUNK;
+  if (e->budget == 0) {
+    lua_sethook(L, NULL, 0, 0);
+    return;
+  }
+  e->armed = e->left < HOOK_CHUNK ? (int)e->left : HOOK_CHUNK;
   lua_sethook(L, engine_hook, LUA_MASKCOUNT, e->armed);
 }
 
@@ -179,6 +184,49 @@ void bsfit_engine_interrupt(bsfit_engine *e) {
   e->interrupted = 1;
   /* lua_sethook is signal-safe (lua.c's laction relies on it). */
   lua_sethook(e->L, engine_hook, LUA_MASKCALL | LUA_MASKRET | LUA_MASKLINE | LUA_MASKCOUNT, 1);
+}
+
+/* A new coroutine gets the count hook the main thread lacks without a budget, so that
+** an interrupt reaches a loop inside it (the interrupt can only hook the main thread,
+** the one it knows to be alive); with a budget it keeps the hook it inherited. Only
+** code inside coroutines pays the tracing cost. */
+static void hook_new_thread(lua_State *co) {
+  if (lua_gethook(co) == NULL) lua_sethook(co, engine_hook, LUA_MASKCOUNT, HOOK_CHUNK);
+}
+
+/* coroutine.create, then hook_new_thread. */
+static int hooked_create(lua_State *L) {
+  luaL_checktype(L, 1, LUA_TFUNCTION); /* named as the caller named it */
+  lua_pushvalue(L, lua_upvalueindex(1));
+  lua_insert(L, 1);
+  lua_call(L, lua_gettop(L) - 1, 1);
+  if (lua_type(L, -1) == LUA_TTHREAD) hook_new_thread(lua_tothread(L, -1));
+  return 1;
+}
+
+/* coroutine.wrap, then hook_new_thread on the thread it made (its function's first
+** upvalue, as in lcorolib.c). */
+static int hooked_wrap(lua_State *L) {
+  luaL_checktype(L, 1, LUA_TFUNCTION); /* named as the caller named it */
+  lua_pushvalue(L, lua_upvalueindex(1));
+  lua_insert(L, 1);
+  lua_call(L, lua_gettop(L) - 1, 1);
+  if (lua_getupvalue(L, -1, 1) != NULL) {
+    if (lua_type(L, -1) == LUA_TTHREAD) hook_new_thread(lua_tothread(L, -1));
+    lua_pop(L, 1);
+  }
+  return 1;
+}
+
+static void hook_coroutines(lua_State *L) {
+  lua_getglobal(L, LUA_COLIBNAME);
+  lua_getfield(L, -1, "create");
+  lua_pushcclosure(L, hooked_create, 1);
+  lua_setfield(L, -2, "create");
+  lua_getfield(L, -1, "wrap");
+  lua_pushcclosure(L, hooked_wrap, 1);
+  lua_setfield(L, -2, "wrap");
+  lua_pop(L, 1);
 }
 
 /* }==================================================================== */
@@ -495,11 +543,13 @@ static void open_sandbox(lua_State *L, const char *dir) {
   wrap_global(L, "load", sandbox_load);
   wrap_global(L, "setmetatable", sandbox_setmetatable);
   wrap_global(L, "xpcall", sandbox_xpcall);
+  hook_coroutines(L);
   sandbox_package(L, dir);
 }
 
 static void open_full(lua_State *L, const char *dir) {
   luaL_openlibs(L);
+  hook_coroutines(L);
   if (dir[0] == '\0') return;
   lua_getglobal(L, LUA_LOADLIBNAME);
   lua_getfield(L, -1, "path");

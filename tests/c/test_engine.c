@@ -383,6 +383,34 @@ static void test_interrupt_from_thread(void **state) {
   bsfit_engine_free(e);
 }
 
+/* Without a budget the main thread runs unhooked: any count hook makes Lua 5.4 trace
+** every instruction, which halved the speed of every script. Coroutines keep a count
+** hook (the interrupt above reaches them through it); with a budget both are hooked. */
+static void test_hooks_only_where_needed(void **state) {
+  static const char *const probe =
+      "main_hook = debug.gethook() ~= nil\n"
+      "local co = coroutine.create(function() return debug.gethook() ~= nil end)\n"
+      "co_hook = select(2, coroutine.resume(co))\n"
+      "wrap_hook = coroutine.wrap(function() return debug.gethook() ~= nil end)()";
+  static const struct { unsigned long long budget; int main_hooked; } cases[] = {{0, 0},
+                                                                                {1u << 30, 1}};
+  size_t i;
+  (void)state;
+  for (i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+    bsfit_engine *e = new_engine(0, 0, cases[i].budget);
+    lua_State *L = bsfit_engine_lua(e);
+    assert_int_equal(bsfit_engine_run_string(e, probe, NULL), BSFIT_OK);
+    lua_getglobal(L, "main_hook");
+    lua_getglobal(L, "co_hook");
+    lua_getglobal(L, "wrap_hook");
+    assert_int_equal(lua_toboolean(L, -3), cases[i].main_hooked);
+    assert_true(lua_toboolean(L, -2));
+    assert_true(lua_toboolean(L, -1));
+    lua_pop(L, 3);
+    bsfit_engine_free(e);
+  }
+}
+
 /* }==================================================================== */
 
 /* {====================================================================
@@ -705,6 +733,7 @@ int main(void) {
     cmocka_unit_test(test_budget_infinite_loop),
     cmocka_unit_test(test_budget_large),
     cmocka_unit_test(test_interrupt_from_thread),
+    cmocka_unit_test(test_hooks_only_where_needed),
     cmocka_unit_test(test_two_threads),
     cmocka_unit_test(test_fit_round_trip),
     cmocka_unit_test(test_fit_weights_and_opts),
