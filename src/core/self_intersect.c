@@ -33,10 +33,50 @@ static double cross3(const double *o, const double *a, const double *b) {
   return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]);
 }
 
-/* proper crossing of segments ab and cd (touching does not count) */
+/* the side of line ab that c is on: 1 left, 0 right, a point on the line counted left
+** (a symbolic perturbation: a chain that crosses another exactly at one of its samples
+** has one of its two edges there cross, not none) */
+static int left_of(const double *a, const double *b, const double *c) {
+  return cross3(a, b, c) >= 0;
+}
+
+/* do segments ab and cd cross (both ends of each on either side of the other)? */
 static int crosses(const double *a, const double *b, const double *c, const double *d) {
-  double d1 = cross3(a, b, c), d2 = cross3(a, b, d), d3 = cross3(c, d, a), d4 = cross3(c, d, b);
-  return ((d1 > 0 && d2 < 0) || (d1 < 0 && d2 > 0)) && ((d3 > 0 && d4 < 0) || (d3 < 0 && d4 > 0));
+  return left_of(a, b, c) != left_of(a, b, d) && left_of(c, d, a) != left_of(c, d, b);
+}
+
+static int same_point(const double *a, const double *b) {
+  return a[0] == b[0] && a[1] == b[1];
+}
+
+/* Is x strictly inside the turn from ray p->a counterclockwise to ray p->b? */
+static int in_sector(const double *p, const double *a, const double *b, const double *x) {
+  double ab = cross3(p, a, b);
+  if (ab > 0) return cross3(p, a, x) > 0 && cross3(p, x, b) > 0;
+  if (ab < 0) return cross3(p, b, x) < 0 || cross3(p, x, a) < 0;
+  if ((a[0] - p[0]) * (b[0] - p[0]) + (a[1] - p[1]) * (b[1] - p[1]) < 0) return cross3(p, a, x) > 0;
+  return 0; /* a and b on one ray: the chain turns back on itself, nothing between */
+}
+
+/* Two samples of the chain at one point, the ends of edges i and j: does the chain pass
+** through itself there (the other pass's samples on either side of this pass's) or only
+** touch? next(i) is the sample after i + 1, or none at the end of an open chain. */
+static int crosses_at_sample(const double *S, size_t i, size_t j, size_t ne, int closed) {
+  size_t ni = i + 2, nj = j + 2;
+  if (closed) ni %= ne, nj %= ne;
+  else if (ni > ne || nj > ne) return 0; /* an end of an open chain only touches */
+  return in_sector(S + 2 * (i + 1), S + 2 * i, S + 2 * ni, S + 2 * j) !=
+         in_sector(S + 2 * (i + 1), S + 2 * i, S + 2 * ni, S + 2 * nj);
+}
+
+/* Edges i and j (not neighbours): do they cross? Where they share a sample, only the
+** pair of edges that end there is asked, and whether the chain passes through itself
+** there; elsewhere the two segments. */
+static int edges_cross(const double *S, size_t i, size_t j, size_t ne, int closed) {
+  const double *a = S + 2 * i, *b = a + 2, *c = S + 2 * j, *d = c + 2;
+  if (same_point(b, d)) return crosses_at_sample(S, i, j, ne, closed);
+  if (same_point(a, c) || same_point(a, d) || same_point(b, c)) return 0;
+  return crosses(a, b, c, d);
 }
 
 /* do edges i and j share a sample (neighbours, or first and last of a closed chain)? */
@@ -141,7 +181,7 @@ static size_t sweep(const double *S, edge *E, size_t ne, int closed, size_t *fir
     for (b = a + 1; b < ne && E[b].x0 <= E[a].x1; b++) {
       size_t i = E[a].i, j = E[b].i;
       if (adjacent(i, j, ne, closed)) continue;
-      if (crosses(S + 2 * i, S + 2 * (i + 1), S + 2 * j, S + 2 * (j + 1))) {
+      if (edges_cross(S, i, j, ne, closed)) {
         if (found++ == 0) *first = i < j ? i : j;
       }
     }
@@ -149,17 +189,31 @@ static size_t sweep(const double *S, edge *E, size_t ne, int closed, size_t *fir
   return found;
 }
 
-/* Do the first and last of the k samples S meet, to the rounding of the coordinates? A
-** curve joined from pieces that close (its last control point its first) evaluates at
-** its end an ulp or two from its start: taken as open, its last edge touched its first
-** there, and the rounding of their cross products read as a crossing (test_self_intersect:
-** 6 of 400 convex outlines of lines and fillets). */
-static int ends_meet(const double *S, size_t k) {
+/* The rounding of the coordinates of the k samples S: two samples closer than this are
+** one point. */
+static double rounding_of(const double *S, size_t k) {
   double scale = 0;
   size_t i;
   for (i = 0; i < 2 * k; i++) scale = fmax(scale, fabs(S[i]));
-  return fabs(S[0] - S[2 * (k - 1)]) <= 16 * DBL_EPSILON * scale &&
-         fabs(S[1] - S[2 * (k - 1) + 1]) <= 16 * DBL_EPSILON * scale;
+  return 16 * DBL_EPSILON * scale;
+}
+
+static int meet(const double *a, const double *b, double tol) {
+  return fabs(a[0] - b[0]) <= tol && fabs(a[1] - b[1]) <= tol;
+}
+
+/* Drops each sample that meets the one kept before it (S and its parameters u), and
+** returns how many are left. Where the curve stands still (a span of coincident control
+** points) the edge of no length between two samples has no side: a crossing through
+** that point was lost, and the edges on either side of it were read as crossing. */
+static size_t drop_repeats(double *S, double *u, size_t k, double tol) {
+  size_t i, kept = 1;
+  for (i = 1; i < k; i++) {
+    if (meet(S + 2 * (kept - 1), S + 2 * i, tol)) continue;
+    S[2 * kept] = S[2 * i], S[2 * kept + 1] = S[2 * i + 1], u[kept] = u[i];
+    kept++;
+  }
+  return kept;
 }
 
 bsfit_err bsfit_curve_self_intersections(const bsfit_curve *c, size_t k, size_t *crossings,
@@ -169,6 +223,7 @@ bsfit_err bsfit_curve_self_intersections(const bsfit_curve *c, size_t k, size_t 
   edge *E = NULL;
   size_t i, ne, first = 0, bs = 0, es = 0, us = 0;
   int closed, stop = 0;
+  double tol;
   bsfit_err e;
   if (crossings) *crossings = 0;
   if (c == NULL || crossings == NULL)
@@ -192,9 +247,19 @@ bsfit_err bsfit_curve_self_intersections(const bsfit_curve *c, size_t k, size_t 
   }
   e = bsfit_curve_eval_many(c, u, k, S, st);
   if (e != BSFIT_OK) goto done;
-  /* a closed curve (periodic, or whose ends meet) is a closed polyline */
-  closed = c->periodic || ends_meet(S, k);
-  if (closed && !c->periodic) k--; /* the last sample repeats the first */
+  tol = rounding_of(S, k);
+  k = drop_repeats(S, u, k, tol);
+  /* A closed curve (periodic, or whose ends meet) is a closed polyline. A curve joined
+  ** from pieces that close (its last control point its first) evaluates at its end an ulp
+  ** or two from its start: taken as open, its last edge touched its first there, and the
+  ** rounding of their cross products read as a crossing (test_self_intersect: 6 of 400
+  ** convex outlines of lines and fillets). */
+  closed = c->periodic || (k > 1 && meet(S, S + 2 * (k - 1), tol));
+  if (closed && k > 1 && meet(S, S + 2 * (k - 1), tol)) k--; /* the last repeats the first */
+  if (k < 3) { /* the curve stands still (or only goes and comes back): nothing to cross */
+    e = bsfit__ok(st);
+    goto done;
+  }
   if (closed) S[2 * k] = S[0], S[2 * k + 1] = S[1];
   ne = closed ? k : k - 1;
   for (i = 0; i < ne; i++) {

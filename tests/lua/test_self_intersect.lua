@@ -82,9 +82,6 @@ T.test("their exact samples far from the origin: auto reports no crossing", func
 end)
 
 -- A bowtie (two of its sides cross, away from any sample), its outer corners filleted.
--- (A crossing exactly through a sample of both edges is not seen: the edges only touch
--- there. A symmetric bowtie's diagonals cross at their middles, where the samples near
--- its corners meet.)
 T.test("a bowtie of lines and fillets crosses itself, wherever it lies", function()
   local uniform = shapes.rng(4711)
   for case = 1, 40 do
@@ -96,6 +93,59 @@ T.test("a bowtie of lines and fillets crosses itself, wherever it lies", functio
     T.ok(bs.geom.self_intersections(C, 2000) > 0, ("bowtie %d at %.3g, scale %.3g: no crossing found")
       :format(case, far, s))
   end
+end)
+
+-- Crossings exactly at a sample of both passes. The four edges there only touch each
+-- other, and none was seen crossing: a figure-eight sampled where it passes the origin
+-- was reported simple.
+--   - A crossed parallelogram (two sides the diagonals of a parallelogram): they cross at
+--     their middles, where the samples drawn ever closer to the corners meet. Dyadic
+--     corners, scales and places keep both middles the same point.
+--   - Random figure-eights: closed cubics whose control points are c1, c2, c3, -c3, -c2,
+--     -c1 pass the origin at the middles of two spans (the middle weights of the two
+--     symmetric control points are equal); periodic at 4j samples, or closed by repeating
+--     three control points at 4j + 1, both middles are samples. Also at 4j + 2 or 4j + 3,
+--     where they are not.
+T.test("a crossing at a sample of both passes is seen", function()
+  local uniform = shapes.rng(2718)
+  local missed, cases = {}, 0
+  for case = 1, 60 do
+    local s, dx, dy = 2 ^ math.floor(20 * uniform() - 10), math.floor(2000 * uniform()) - 1000,
+      math.floor(2000 * uniform()) - 1000
+    local w, h = 1 + math.floor(8 * uniform()), 1 + math.floor(8 * uniform())
+    local corners = { { 0, 0 }, { w, h }, { 0, h }, { w, 0 } }
+    local parts, lengths = {}, {}
+    for i = 1, 4 do
+      local a, b = corners[i], corners[i % 4 + 1]
+      parts[i] = bs.curve.line({ s * (a[1] + dx), s * (a[2] + dy) }, { s * (b[1] + dx), s * (b[2] + dy) })
+      lengths[i] = s * shapes.dist(a, b)
+    end
+    cases = cases + 1
+    if bs.geom.self_intersections(bs.curve.join(parts, lengths), 2000) == 0 then
+      missed[#missed + 1] = ("parallelogram %d (%d x %d, scale %g)"):format(case, w, h, s)
+    end
+  end
+  for case = 1, 100 do
+    local c = {}
+    for i = 1, 3 do c[i] = { 2 * uniform() - 1, 2 * uniform() - 1 } end
+    local cps = { c[1], c[2], c[3], { -c[3][1], -c[3][2] }, { -c[2][1], -c[2][2] }, { -c[1][1], -c[1][2] } }
+    local periodic = bs.curve.new { degree = 3, knots = { 0, 1, 2, 3, 4, 5, 6 }, control_points = cps,
+      periodic = true }
+    local wrapped_cps, knots = {}, {}
+    for i = 1, 9 do wrapped_cps[i] = cps[(i - 1) % 6 + 1] end
+    for i = 0, 12 do knots[#knots + 1] = i - 3 end
+    local wrapped = bs.curve.new { degree = 3, knots = knots, control_points = wrapped_cps }
+    for _, k in ipairs { 12 + 4 * (case % 50), 2000, 2001, 2002 } do
+      cases = cases + 2
+      for name, C in pairs { periodic = periodic, ["closed by its control points"] = wrapped } do
+        if bs.geom.self_intersections(C, name == "periodic" and k or k + 1) == 0 then
+          missed[#missed + 1] = ("figure-eight %d, %s, %d samples"):format(case, name, k)
+        end
+      end
+    end
+  end
+  T.ok(#missed == 0, ("%d of %d crossings missed: %s"):format(#missed, cases,
+    table.concat(missed, "; ", 1, math.min(#missed, 8))))
 end)
 
 -- A non-convex filleted polygon, 115 exact samples 392 sizes from the origin (held out
