@@ -186,6 +186,25 @@ static double split_position(const contour *c, size_t k, const side *left, const
   return pos;
 }
 
+/* How far the corner point x lies outside the gap it was placed in (position: after
+** sample j, before j + 1): past j + 1 along the right side's direction, or short of j
+** along the left side's (0 when inside). Forced through such a point, the curve runs on
+** past the sample and turns back to it: a hook (an exact 5-lobed star of 80 samples, its
+** noise read from the lobes' curvature, had two of 157 degrees). */
+static double outside_gap(const contour *c, double position, const side *left,
+                          const side *right, const double *x) {
+  size_t j = (size_t)floor(position) % c->m;
+  const double *a = point(c, j), *b = point(c, (j + 1) % c->m);
+  double past = 0, short_of = 0;
+  int d;
+  if (!c->closed && j + 1 >= c->m) return 0.0;
+  for (d = 0; d < c->dim; d++) {
+    past += (x[d] - b[d]) * right->dir[d];
+    short_of += (a[d] - x[d]) * left->dir[d];
+  }
+  return fmax(0.0, fmax(past, short_of));
+}
+
 /* The turn at k if it is a corner, else a negative value; its window (from, to), the
 ** distance from Q_k to the corner (for thinning), where the corner lies along the
 ** samples and the corner point. The tests, cheapest first:
@@ -226,6 +245,10 @@ static double corner_turn(const contour *c, size_t k, double scale, double sigma
   lim = 3.0 * sqrt(2.0 * sigma * sigma + bsfit__corner_meet_variance(&left, &right, x, sigma)) +
         bsfit__corner_bend_allowance(c, &left, &right, x, angle) + 0.005 * scale;
   if (bsfit__corner_edge_distance(c, k, x, angle) > lim) return -1.0;
+  /* a spike's tip lies beyond its samples; any other corner lies between two */
+  if (!beyond && angle <= 2.0 * PI / 3.0 &&
+      outside_gap(c, *position, &left, &right, meet_point) > 0)
+    return -1.0;
   if (!bsfit__corner_turn_concentrated(c, *position, &left, &right, sigma)) return -1.0;
   gl = left;
   gr = right;

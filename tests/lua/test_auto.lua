@@ -195,6 +195,58 @@ T.test("no false corners where smooth bends look like corners (noise 0.3%, spars
   end
 end)
 
+-- Where the sides of a corner meet past the sample after its gap (or short of the one
+-- before), the curve forced through that point runs on past the sample and turns back to
+-- it: a hook. An exact 5-lobed star of 80 uneven samples (a held-out probe), its noise
+-- read from the lobes' curvature, had two false corners of 34 degrees drawn as hooks of
+-- 157. bs.geom.corners now refuses such a corner (a spike's tip, which lies beyond its
+-- samples, excepted). Measured here without the detector's own terms: the polygon from
+-- the sample before a corner point through it to the sample after turns by far more than
+-- the corner's sides (45 degrees more) only at a hook. On 1200 stars of 3 to 8 lobes, 40
+-- to 160 uneven samples, exact or at noise 1e-3 and 3e-3 of their size: 78 of 186 such
+-- corners were hooks before, 34 of 131 now (HOOKS; the rest have sides curved so that
+-- their lines meet inside the gap while the samples beside it do not).
+local HOOKS = 34
+T.test("corners between samples: their sides meet inside the gap, not past a sample", function()
+  local hooks, between, list = 0, 0, {}
+  for _, seed in ipairs { 5, 11 } do
+    local uniform, gauss = synth.rng(seed)
+    for case = 1, 600 do
+      local k, A = 3 + math.floor(6 * uniform()), 0.08 + 0.22 * uniform()
+      local phase, m = TWO_PI * uniform(), 40 + math.floor(120 * uniform())
+      local warp, psi = 0.35 * uniform(), TWO_PI * uniform()
+      local rel = ({ 0, 1e-3, 3e-3 })[case % 3 + 1]
+      local pts = {}
+      for i = 0, m - 1 do
+        local t = TWO_PI * i / m
+        t = t + warp * math.sin(2 * t + psi) / 2
+        local r = 1 + A * math.cos(k * t + phase)
+        pts[#pts + 1] = { r * math.cos(t) + 2 * rel * gauss(), r * math.sin(t) + 2 * rel * gauss() }
+      end
+      local P = bs.points.new(pts)
+      local sigma = bs.geom.noise_sigma(P, { closed = true })
+      local _, turns, where, at = bs.geom.corners(P, { closed = true, sigma = sigma > 0 and sigma or nil })
+      local W, X, deg = where:totable(), at:totable(), turns:totable()
+      for i = 1, #W do
+        local j = math.floor(W[i])
+        if W[i] > j and deg[i] <= 120 then
+          between = between + 1
+          local a, b, x = pts[(j - 1) % m + 1], pts[j % m + 1], X[i]
+          local ux, uy, vx, vy = a[1] - x[1], a[2] - x[2], b[1] - x[1], b[2] - x[2]
+          local c = (ux * vx + uy * vy) / math.sqrt((ux * ux + uy * uy) * (vx * vx + vy * vy))
+          local polygon_turn = 180 - math.deg(math.acos(math.max(-1, math.min(1, c))))
+          if polygon_turn > deg[i] + 45 then
+            hooks = hooks + 1
+            list[#list + 1] = ("seed %d case %d: %.0f against %.0f"):format(seed, case, polygon_turn, deg[i])
+          end
+        end
+      end
+    end
+  end
+  T.ok(hooks <= HOOKS, ("%d of %d corners between samples hook (at most %d): %s"):format(hooks, between,
+    HOOKS, table.concat(list, "; ", 1, math.min(#list, 6))))
+end)
+
 -- A smooth noisy shape is followed by tangent arcs and lines within the noise (a cam by
 -- four arcs, an ellipse by an oval of four), but its curvature changes along them: such
 -- pieces were taken for 18 of the 180 sections below, 3 to 7 times farther from the truth
