@@ -247,7 +247,7 @@ static double corner_turn(const contour *c, size_t k, double scale, double sigma
   if (bsfit__corner_edge_distance(c, k, x, angle) > lim) return -1.0;
   /* a spike's tip lies beyond its samples; any other corner lies between two */
   if (!beyond && angle <= 2.0 * PI / 3.0 &&
-      outside_gap(c, *position, &left, &right, meet_point) > 0)
+      outside_gap(c, *position, &left, &right, meet_point) > 3.0 * sigma + 1e-9 * scale)
     return -1.0;
   if (!bsfit__corner_turn_concentrated(c, *position, &left, &right, sigma)) return -1.0;
   gl = left;
