@@ -45,6 +45,9 @@ static int crosses(const double *a, const double *b, const double *c, const doub
   return left_of(a, b, c) != left_of(a, b, d) && left_of(c, d, a) != left_of(c, d, b);
 }
 
+/* Exactly: only a sample shared to the last bit leaves the four edges there touching
+** (samples an ulp apart are a generic pair of segments, and crosses decides them: 300
+** figure-eights moved off the origin, their passes apart by rounding, all found). */
 static int same_point(const double *a, const double *b) {
   return a[0] == b[0] && a[1] == b[1];
 }
@@ -59,8 +62,8 @@ static int in_sector(const double *p, const double *a, const double *b, const do
 }
 
 /* Two samples of the chain at one point, the ends of edges i and j: does the chain pass
-** through itself there (the other pass's samples on either side of this pass's) or only
-** touch? next(i) is the sample after i + 1, or none at the end of an open chain. */
+** through itself there (the other pass's samples before and after on either side of this
+** pass's turn) or only touch? At the end of an open chain there is no sample after. */
 static int crosses_at_sample(const double *S, size_t i, size_t j, size_t ne, int closed) {
   size_t ni = i + 2, nj = j + 2;
   if (closed) ni %= ne, nj %= ne;
@@ -254,8 +257,8 @@ bsfit_err bsfit_curve_self_intersections(const bsfit_curve *c, size_t k, size_t 
   ** or two from its start: taken as open, its last edge touched its first there, and the
   ** rounding of their cross products read as a crossing (test_self_intersect: 6 of 400
   ** convex outlines of lines and fillets). */
-  closed = c->periodic || (k > 1 && meet(S, S + 2 * (k - 1), tol));
-  if (closed && k > 1 && meet(S, S + 2 * (k - 1), tol)) k--; /* the last repeats the first */
+  closed = c->periodic;
+  if (k > 1 && meet(S, S + 2 * (k - 1), tol)) closed = 1, k--; /* the last repeats the first */
   if (k < 3) { /* the curve stands still (or only goes and comes back): nothing to cross */
     e = bsfit__ok(st);
     goto done;
