@@ -194,23 +194,27 @@ static void hook_new_thread(lua_State *co) {
   if (lua_gethook(co) == NULL) lua_sethook(co, engine_hook, LUA_MASKCOUNT, HOOK_CHUNK);
 }
 
-/* coroutine.create, then hook_new_thread. */
-static int hooked_create(lua_State *L) {
-  luaL_checktype(L, 1, LUA_TFUNCTION); /* named as the caller named it */
+/* Calls the wrapped library function (upvalue 1) with the arguments, leaving its one
+** result; the function argument is checked here, so that an error names the function
+** as the caller called it. */
+static void call_wrapped(lua_State *L) {
+  luaL_checktype(L, 1, LUA_TFUNCTION);
   lua_pushvalue(L, lua_upvalueindex(1));
   lua_insert(L, 1);
   lua_call(L, lua_gettop(L) - 1, 1);
-  if (lua_type(L, -1) == LUA_TTHREAD) hook_new_thread(lua_tothread(L, -1));
+}
+
+/* coroutine.create, then hook_new_thread. */
+static int hooked_create(lua_State *L) {
+  call_wrapped(L);
+  hook_new_thread(lua_tothread(L, -1));
   return 1;
 }
 
 /* coroutine.wrap, then hook_new_thread on the thread it made (its function's first
 ** upvalue, as in lcorolib.c). */
 static int hooked_wrap(lua_State *L) {
-  luaL_checktype(L, 1, LUA_TFUNCTION); /* named as the caller named it */
-  lua_pushvalue(L, lua_upvalueindex(1));
-  lua_insert(L, 1);
-  lua_call(L, lua_gettop(L) - 1, 1);
+  call_wrapped(L);
   if (lua_getupvalue(L, -1, 1) != NULL) {
     if (lua_type(L, -1) == LUA_TTHREAD) hook_new_thread(lua_tothread(L, -1));
     lua_pop(L, 1);
