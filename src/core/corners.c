@@ -245,7 +245,7 @@ static double corner_turn(const contour *c, size_t k, double scale, double sigma
   lim = 3.0 * sqrt(2.0 * sigma * sigma + bsfit__corner_meet_variance(&left, &right, x, sigma)) +
         bsfit__corner_bend_allowance(c, &left, &right, x, angle) + 0.005 * scale;
   if (bsfit__corner_edge_distance(c, k, x, angle) > lim) return -1.0;
-  /* a spike's tip lies beyond its samples; any other corner lies between two */
+  /* a spike's tip lies beyond its samples; any other corner lies between two, to the noise */
   if (!beyond && angle <= 2.0 * PI / 3.0 &&
       outside_gap(c, *position, &left, &right, meet_point) > 3.0 * sigma + 1e-9 * scale)
     return -1.0;

@@ -3,7 +3,7 @@
 -- match. They did not while the engine armed a count hook in every call, budget or not:
 -- Lua 5.4 then traces every instruction, and scripts ran at half speed. A loop inside a
 -- coroutine still carries that hook under bsfit (it is how an interrupt reaches it).
---   bsfit tests/bench/bench_host.lua
+--   bsfit tests/bench/bench_host.lua     (and bsfit --instr-limit 1e12 ...: the budget's cost)
 package.path = (arg[0]:match("^(.*)/[^/]*$") or ".") .. "/?.lua;" .. package.path
 local bench = require "benchlib"
 
