@@ -95,17 +95,21 @@ bsfit_err bsfit__surface_along_v(const bsfit_surface *s, const bsfit__fspline *f
                                  bsfit__vop op, const void *arg, int periodic_u,
                                  const bsfit_allocator *a, bsfit_surface *out,
                                  bsfit_status *st) {
-  size_t dim = (size_t)s->dim, nu2 = fu->n, bytes = fu->n * fu->d * sizeof(double);
+  /* Closed around u, only the distinct rows go along v and the wrapped rows are copied:
+  ** a solve with many right-hand sides need not round equal columns equally (OpenBLAS's
+  ** generic kernels do not), and a periodic net must repeat its rows exactly. */
+  size_t dim = (size_t)s->dim, nu2 = fu->n, distinct = periodic_u ? fu->n - (size_t)fu->p : nu2;
+  size_t bytes = distinct * s->nv * dim * sizeof(double), row;
   bsfit__fview v;
   bsfit__fspline fv;
   bsfit_surface res;
   double *tr = bsfit__alloc(a, bytes);
   bsfit_err e;
   if (tr == NULL) return bsfit__fail(st, BSFIT_ENOMEM, "out of memory for a transposed net");
-  bsfit__transpose_net(fu->P, nu2, s->nv, dim, tr);
+  bsfit__transpose_net(fu->P, distinct, s->nv, dim, tr);
   v.p = s->degree_v;
   v.n = s->nv;
-  v.d = nu2 * dim;
+  v.d = distinct * dim;
   v.U = s->knots_v;
   v.P = tr;
   e = op(&v, arg, a, &fv, st);
@@ -117,7 +121,9 @@ bsfit_err bsfit__surface_along_v(const bsfit_surface *s, const bsfit__fspline *f
     res.periodic_u = periodic_u;
     memcpy(res.knots_u, fu->U, (nu2 + (size_t)fu->p + 1) * sizeof(double));
     memcpy(res.knots_v, fv.U, (fv.n + (size_t)fv.p + 1) * sizeof(double));
-    bsfit__transpose_net(fv.P, fv.n, nu2, dim, res.ctrl);
+    bsfit__transpose_net(fv.P, fv.n, distinct, dim, res.ctrl);
+    row = fv.n * dim;
+    memcpy(res.ctrl + distinct * row, res.ctrl, (nu2 - distinct) * row * sizeof(double));
     e = bsfit_surface_validate(&res, st);
   }
   bsfit__fspline_free(a, &fv);
