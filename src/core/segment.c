@@ -517,17 +517,30 @@ static double max_spacing(const seg_section *s, const bsfit_piece *p) {
   return h;
 }
 
-/* Do the models touch? A line and a circle when the centre is r from the line, two
-** circles when their centres are r1 + r2 or |r1 - r2| apart, within the tolerance
-** (a tangent join meets at the touching point, which the intersection formulas find
-** only to the square root of the rounding). Writes the touching point. */
+/* Do the models run on the same way at x (their tangents there, each in its samples'
+** direction, not opposed)? Models that touch but run opposite ways meet in a cusp: a line
+** into a circle of a serif's three sides that turns back along it (T_serif of 4 noisy
+** samples per side: a "tangent" join that turned by 177 degrees, 5 times the floor off). */
+static int same_way(const seg_model *ma, const seg_model *mb, const double *x) {
+  double f[2], ta[2], tb[2];
+  bsfit__model_foot(ma, x, f, ta);
+  bsfit__model_foot(mb, x, f, tb);
+  return ta[0] * tb[0] + ta[1] * tb[1] > 0;
+}
+
+/* Do the models touch, running on the same way? A line and a circle when the centre is r
+** from the line, two circles when their centres are r1 + r2 or |r1 - r2| apart, within
+** the tolerance (a tangent join meets at the touching point, which the intersection
+** formulas find only to the square root of the rounding). Writes the touching point. */
 static int touching(const seg_section *s, const seg_model *ma, const seg_model *mb, double *x) {
   double t[2];
   if (ma->kind == LINE && mb->kind == LINE) return 0;
   if (ma->kind == LINE || mb->kind == LINE) {
     const seg_model *ml = ma->kind == LINE ? ma : mb, *mc = ma->kind == LINE ? mb : ma;
     bsfit__model_foot(ml, mc->circle.c, x, t);
-    return fabs(hypot(x[0] - mc->circle.c[0], x[1] - mc->circle.c[1]) - mc->circle.r) <= 2 * s->tol;
+    return fabs(hypot(x[0] - mc->circle.c[0], x[1] - mc->circle.c[1]) - mc->circle.r) <=
+               2 * s->tol &&
+           same_way(ma, mb, x);
   } else {
     const bsfit__circle *A = &ma->circle, *B = &mb->circle;
     double d = hypot(B->c[0] - A->c[0], B->c[1] - A->c[1]), u;
@@ -540,7 +553,7 @@ static int touching(const seg_section *s, const seg_model *ma, const seg_model *
       return 0;
     x[0] = A->c[0] + u * (B->c[0] - A->c[0]);
     x[1] = A->c[1] + u * (B->c[1] - A->c[1]);
-    return 1;
+    return same_way(ma, mb, x);
   }
 }
 

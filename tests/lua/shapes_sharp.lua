@@ -368,6 +368,34 @@ end
 
 M.tangent = tangent
 M.length = length
+-- The turns (degrees) of the curve C of rep.pieces at its tangent (G1) joins between two
+-- primitives (lines, arcs): the angle between C's derivatives just before and just after
+-- each such join, and whether the pieces' own tangents there (prev.t_end, p.t_start) run
+-- the same way. Free runs are left out (their end tangents are their neighbours' by
+-- construction). Returns the largest turn, how many exceed `limit` degrees, how many
+-- joins, and how many whose pieces' tangents oppose each other (a cusp called tangent).
+function M.tangent_kinks(C, rep, limit)
+  local worst, over, joins, opposed = 0, 0, 0, 0
+  local P = rep.pieces or {}
+  local a, b = C:domain()
+  local function unit(x, y) local l = math.sqrt(x * x + y * y); return x / l, y / l end
+  for i, p in ipairs(P) do
+    local prev = P[(i - 2) % #P + 1]
+    if p.join == "tangent" and #P > 1 and (i > 1 or rep.closed) and p.kind ~= "free"
+       and prev.kind ~= "free" then
+      local t, e = a + (b - a) * p.range[1], 1e-9 * (b - a)
+      local t0 = t - e < a and t - e + (b - a) or t - e
+      local x1, y1 = unit(C:deriv(t0))
+      local x2, y2 = unit(C:deriv(t + e))
+      local turn = math.deg(math.atan(math.abs(x1 * y2 - y1 * x2), x1 * x2 + y1 * y2))
+      joins, worst = joins + 1, math.max(worst, turn)
+      if turn > limit then over = over + 1 end
+      if prev.t_end[1] * p.t_start[1] + prev.t_end[2] * p.t_start[2] <= 0 then opposed = opposed + 1 end
+    end
+  end
+  return worst, over, joins, opposed
+end
+
 
 -- }======================================================================
 
