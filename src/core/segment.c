@@ -1176,6 +1176,30 @@ static size_t finish_pieces(const seg_section *s, bsfit_piece *p, seg_model *md,
   return np;
 }
 
+/* The standard error of an arc's radius at the noise (s->unit), from its samples round its
+** centre: the radius's entry of the inverse of J^T J, J's rows (u_x, u_y, 1) for the unit
+** vector u from the centre to each sample (the derivatives of the distance |x - c| - r by
+** the centre and the radius). A fillet refitted with its lines held is known better than
+** this; it is what the arc's own samples say. */
+static double radius_se(const seg_section *s, const bsfit_piece *p) {
+  double M[6] = {0, 0, 0, 0, 0, 0}; /* xx xy x1 yy y1 11 */
+  double det, cof;
+  size_t k;
+  if (!s->noisy) return 0.0;
+  for (k = 0; k < p->count; k++) {
+    const double *q = sample(s, p->first + k);
+    double dx = q[0] - p->centre[0], dy = q[1] - p->centre[1], d = hypot(dx, dy);
+    if (!(d > 0)) continue;
+    dx /= d, dy /= d;
+    M[0] += dx * dx, M[1] += dx * dy, M[2] += dx, M[3] += dy * dy, M[4] += dy, M[5] += 1;
+  }
+  cof = M[0] * M[3] - M[1] * M[1];
+  det = M[0] * (M[3] * M[5] - M[4] * M[4]) - M[1] * (M[1] * M[5] - M[4] * M[2]) +
+        M[2] * (M[1] * M[4] - M[3] * M[2]);
+  if (!(det > 1e-12 * M[5] * M[5] * M[5]) || !(cof > 0)) return HUGE_VAL;
+  return s->unit * sqrt(cof / det);
+}
+
 static void count_gaps(seg_section *s) {
   size_t i;
   s->gaps[0] = 0;
@@ -1262,6 +1286,7 @@ bsfit_err bsfit_segment(const double *pts, size_t m, int dim, const bsfit_segmen
     np = cover(&s, len, prim, fr, heaps, buf);
   }
   np = finish_pieces(&s, buf, md, np);
+  for (i = 0; i < np; i++) buf[i].radius_se = buf[i].kind == ARC ? radius_se(&s, &buf[i]) : 0.0;
   for (i = 0; i < np && i < cap; i++) pieces[i] = buf[i];
   *count = np;
   e = bsfit__ok(st);

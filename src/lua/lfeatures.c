@@ -11,8 +11,8 @@
 **   bs.curve.join({C1, C2, ...}, {len1, len2, ...})      --> Curve
 ** A piece is {kind = "line"|"arc"|"free", join = "corner"|"tangent"|"end", first =,
 ** last =, count = (1-based samples; last < first when it wraps), start = {x, y},
-** ["end"] = {x, y}, t_start =, t_end = (unit tangents), centre =, radius =, sweep =
-** (arcs), turn = (degrees) and evidence = (sigma^2) at corner joins, rms =, max =
+** ["end"] = {x, y}, t_start =, t_end = (unit tangents), centre =, radius =, sweep =,
+** radius_se = (arcs), turn = (degrees) and evidence = (sigma^2) at corner joins, rms =, max =
 ** (distances of its samples to its model)}.
 **   bs.geom.segment_sigma(P [, {closed = true, max = 0}]) --> the noise of a section of
 ** lines and arcs, read off their own residuals (levels up to `max`; 0: 5% of the size;
@@ -55,6 +55,8 @@ static void push_piece(lua_State *L, const bsfit_piece *p, size_t m) {
     lua_setfield(L, -2, "radius");
     lua_pushnumber(L, p->sweep);
     lua_setfield(L, -2, "sweep");
+    lua_pushnumber(L, p->radius_se);
+    lua_setfield(L, -2, "radius_se");
   }
   if (p->join == BSFIT_JOIN_CORNER) {
     lua_pushnumber(L, p->turn * 57.29577951308232);

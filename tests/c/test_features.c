@@ -95,6 +95,34 @@ static void test_arc_is_the_circle(void **state) {
   bsfit_curve_free(&c);
 }
 
+/* Given n samples evenly round a circle and a noise sigma, when segmented, then the one arc's
+** radius_se is sigma / sqrt(n): J^T J is diag(n/2, n/2, n) there (the u vectors sum to 0).
+** On exact data (sigma 0) it is 0. */
+static void test_radius_se_of_a_whole_circle(void **state) {
+  double xy[2 * 96];
+  bsfit_segment_opts o;
+  bsfit_piece p[200];
+  size_t np, n, k;
+  (void)state;
+  for (n = 24; n <= 96; n += 24) {
+    for (k = 0; k < n; k++) {
+      xy[2 * k] = 3.0 + 2.0 * cos(2 * PI * (double)k / (double)n);
+      xy[2 * k + 1] = -1.0 + 2.0 * sin(2 * PI * (double)k / (double)n);
+    }
+    memset(&o, 0, sizeof o);
+    o.closed = 1;
+    o.sigma = 1e-3;
+    assert_int_equal(bsfit_segment(xy, n, 2, &o, p, 200, &np, NULL, NULL), BSFIT_OK);
+    assert_int_equal((int)np, 1);
+    assert_int_equal(p[0].kind, BSFIT_PIECE_ARC);
+    assert_float_equal(p[0].radius_se, 1e-3 / sqrt((double)n), 1e-9 * 1e-3);
+    o.sigma = 0;
+    assert_int_equal(bsfit_segment(xy, n, 2, &o, p, 200, &np, NULL, NULL), BSFIT_OK);
+    assert_int_equal((int)np, 1);
+    assert_true(p[0].radius_se == 0.0);
+  }
+}
+
 static void test_join_keeps_each_part(void **state) {
   bsfit_curve a, b, j;
   const bsfit_curve *parts[2];
@@ -266,6 +294,7 @@ int main(void){
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_polygons_segment_into_lines_meeting_at_the_vertices),
       cmocka_unit_test(test_arc_is_the_circle),
+      cmocka_unit_test(test_radius_se_of_a_whole_circle),
       cmocka_unit_test(test_join_keeps_each_part),
       cmocka_unit_test(test_self_intersections_match_brute_force),
       cmocka_unit_test(test_self_intersections_next_to_a_corner),
