@@ -17,6 +17,7 @@
 */
 #include "filter_internal.h"
 
+#include <limits.h>
 #include <math.h>
 #include <string.h>
 
@@ -191,6 +192,13 @@ static bsfit_err search_order(sctx *x, int r, double w0, scand *best, bsfit_stat
 ** Public entry
 ** ===================================================================== */
 
+/* The highest order a surface closed around u can be filtered with: order r raises its
+** degree in u to p + r, which needs p + r + 1 distinct rows (bsfit__check_box_surface).
+** INT_MAX when open. */
+static int closed_order_cap(const bsfit_surface *s) {
+  return s->periodic_u ? (int)(s->nu - (size_t)s->degree_u) - s->degree_u - 1 : INT_MAX;
+}
+
 static bsfit_err check_smooth_surface(const bsfit_surface *s, const bsfit_smooth_opts *o, int q,
                                       bsfit_status *st) {
   bsfit_err e;
@@ -211,15 +219,23 @@ static bsfit_err check_smooth_surface(const bsfit_surface *s, const bsfit_smooth
   if (o->order < 0 || o->order > BSFIT_MAX_DEGREE - pmax)
     return bsfit__fail(st, BSFIT_EINVAL, "order = %d must be in 1..%d (or 0: searched)", o->order,
                        BSFIT_MAX_DEGREE - pmax);
+  if (o->order > closed_order_cap(s))
+    return bsfit__fail(st, BSFIT_ENOTPERIODIC,
+                       "order = %d raises the degree in u to %d, and a surface closed around u "
+                       "of that degree needs %d distinct rows; this one has %zu",
+                       o->order, s->degree_u + o->order, s->degree_u + o->order + 1,
+                       s->nu - (size_t)s->degree_u);
   return BSFIT_OK;
 }
 
-/* Each order's widest width, the least energy kept in best. */
+/* Each order's widest width, the least energy kept in best. Orders the closed net cannot
+** take are not tried (each width of them failed, 10 evaluations an order for nothing). */
 static bsfit_err search(sctx *x, int order, scand *best, bsfit_status *st) {
   int r, r0 = order ? order : 1, r1 = order ? order : MAX_AUTO_ORDER, last = 0;
   double w0 = 0.5;
   int pmax = x->s->degree_u > x->s->degree_v ? x->s->degree_u : x->s->degree_v;
   if (r1 > BSFIT_MAX_DEGREE - pmax) r1 = BSFIT_MAX_DEGREE - pmax;
+  if (r1 > closed_order_cap(x->s)) r1 = closed_order_cap(x->s);
   for (r = r0; r <= r1; r++) {
     scand cur;
     bsfit_err e;

@@ -486,6 +486,18 @@ static void test_bad_input(void **state) {
   expect_error(bsfit_filter_kernel_surface_delta(&s, 2, 1, 0.1, 0.1, &r, &st),
                BSFIT_ENOTPERIODIC, &st);
   assert_non_null(strstr(st.msg, "closed around u"));
+  /* smoothing at an order that net cannot take is an error, not the surface unchanged;
+  ** searched, no order is tried and the surface comes back unchanged */
+  so.order = 2;
+  expect_error(bsfit_filter_smooth_surface(&s, &so, &r, NULL, &st), BSFIT_ENOTPERIODIC, &st);
+  assert_non_null(strstr(st.msg, "order = 2"));
+  so.order = 0;
+  {
+    bsfit_smooth_report rep;
+    assert_int_equal(bsfit_filter_smooth_surface(&s, &so, &r, &rep, &st), BSFIT_OK);
+    assert_int_equal(rep.changed, 0);
+    assert_int_equal(rep.evaluations, 0);
+  }
   bsfit_surface_free(&s);
   bsfit_surface_free(&r);
 }
