@@ -270,8 +270,8 @@ end
 -- ends: an arc held at one end only met the other line at up to 0.9 degrees, on dense
 -- noisy filleted polygons) when that keeps them within `sigma` as near their model's
 -- circle as an arc through their ends would be; the lines' ends and the arc's ends,
--- centre and radius are then the fillet's.
-local function fillets(pieces, o)
+-- centre and radius are then the fillet's, and its rms and max its samples' distances to it.
+local function fillets(P, pieces, o)
   local n = #pieces
   if n < 3 then return end
   for i, p in ipairs(pieces) do
@@ -288,6 +288,13 @@ local function fillets(pieces, o)
             off_model(p, p.start, p["end"], through, sweep_round(p, p.start, p["end"], through)) + slack then
           A["end"], p.start, p["end"], B.start = fa, fa, fb, fb
           p.centre, p.radius, p.sweep = cc, r, sweep
+          local q2, worst = 0, 0
+          local pts = piece_samples(P, p)
+          for _, x in ipairs(pts) do
+            local d = math.abs(dist(x, cc) - r)
+            q2, worst = q2 + d * d, math.max(worst, d)
+          end
+          if #pts > 0 then p.rms, p.max = math.sqrt(q2 / #pts), worst end
         end
       end
     end
@@ -326,7 +333,7 @@ end
 -- Draws every piece (see drawing_order): parts[i], lens[i], and each part's end tangents.
 local function draw_pieces(P, pieces, o)
   local n, parts, lens, ts, te = #pieces, {}, {}, {}, {}
-  fillets(pieces, o)
+  fillets(P, pieces, o)
   local function neighbour_tangent(i, at_start) -- a drawn primitive's tangent at the join
     local j = at_start and (i - 2) % n + 1 or i % n + 1
     local p = pieces[i]
