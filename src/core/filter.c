@@ -274,7 +274,7 @@ bsfit_err bsfit__check_box_surface(const bsfit_surface *s, const bsfit__pass *au
   size_t nper;
   if (e != BSFIT_OK) return e;
   nper = s->nu - (size_t)s->degree_u; /* closed around u: its distinct rows */
-  if (s->periodic_u && nper < (size_t)(s->degree_u + au->order) + 1)
+  if (au->order > bsfit__closed_order_cap(s))
     return bsfit__fail(st, BSFIT_ENOTPERIODIC,
                        "filtering raises the degree in u to %d, and a surface closed around u "
                        "of that degree needs %d distinct rows; this one has %zu",

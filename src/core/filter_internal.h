@@ -9,6 +9,8 @@
 
 #include "internal.h"
 
+#include <limits.h>
+
 /* A borrowed spline: degree p, n control points of d doubles each (row-major),
 ** n+p+1 knots. d may exceed 4. */
 typedef struct bsfit__fview {
@@ -39,6 +41,12 @@ void bsfit__transpose_net(const double *src, size_t rows, size_t cols, size_t di
 /* A one-dimensional operation on a raw spline (a filter's passes, a projection). */
 typedef bsfit_err (*bsfit__vop)(const bsfit__fview *v, const void *arg, const bsfit_allocator *a,
                                 bsfit__fspline *out, bsfit_status *st);
+
+/* The highest filter order a surface closed around u can take: order r raises its degree
+** in u to p + r, which needs p + r + 1 distinct rows. INT_MAX when it is open. */
+static inline int bsfit__closed_order_cap(const bsfit_surface *s) {
+  return s->periodic_u ? (int)(s->nu - (size_t)s->degree_u) - s->degree_u - 1 : INT_MAX;
+}
 
 /* The second half of a tensor operation: fu holds s's net done along u (rows of nv*dim
 ** values); op runs along v on its columns (the net transposed), and the surface of fu's u

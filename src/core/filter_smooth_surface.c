@@ -17,7 +17,6 @@
 */
 #include "filter_internal.h"
 
-#include <limits.h>
 #include <math.h>
 #include <string.h>
 
@@ -192,13 +191,6 @@ static bsfit_err search_order(sctx *x, int r, double w0, scand *best, bsfit_stat
 ** Public entry
 ** ===================================================================== */
 
-/* The highest order a surface closed around u can be filtered with: order r raises its
-** degree in u to p + r, which needs p + r + 1 distinct rows (bsfit__check_box_surface).
-** INT_MAX when open. */
-static int closed_order_cap(const bsfit_surface *s) {
-  return s->periodic_u ? (int)(s->nu - (size_t)s->degree_u) - s->degree_u - 1 : INT_MAX;
-}
-
 static bsfit_err check_smooth_surface(const bsfit_surface *s, const bsfit_smooth_opts *o, int q,
                                       bsfit_status *st) {
   bsfit_err e;
@@ -219,7 +211,7 @@ static bsfit_err check_smooth_surface(const bsfit_surface *s, const bsfit_smooth
   if (o->order < 0 || o->order > BSFIT_MAX_DEGREE - pmax)
     return bsfit__fail(st, BSFIT_EINVAL, "order = %d must be in 1..%d (or 0: searched)", o->order,
                        BSFIT_MAX_DEGREE - pmax);
-  if (o->order > closed_order_cap(s))
+  if (o->order > bsfit__closed_order_cap(s))
     return bsfit__fail(st, BSFIT_ENOTPERIODIC,
                        "order = %d raises the degree in u to %d, and a surface closed around u "
                        "of that degree needs %d distinct rows; this one has %zu",
@@ -235,7 +227,7 @@ static bsfit_err search(sctx *x, int order, scand *best, bsfit_status *st) {
   double w0 = 0.5;
   int pmax = x->s->degree_u > x->s->degree_v ? x->s->degree_u : x->s->degree_v;
   if (r1 > BSFIT_MAX_DEGREE - pmax) r1 = BSFIT_MAX_DEGREE - pmax;
-  if (r1 > closed_order_cap(x->s)) r1 = closed_order_cap(x->s);
+  if (r1 > bsfit__closed_order_cap(x->s)) r1 = bsfit__closed_order_cap(x->s);
   for (r = r0; r <= r1; r++) {
     scand cur;
     bsfit_err e;

@@ -878,11 +878,12 @@ static size_t place_ends(const seg_section *s, bsfit_piece *p, seg_model *md, si
 ** so keeps its place. */
 static void rejoin_lines(const seg_section *s, bsfit_piece *p, seg_model *md, size_t np) {
   size_t i;
-  for (i = 0; i < np; i++) {
+  for (i = np < 2 ? np : 0; i < np; i++) {
     size_t ia = (i + np - 1) % np;
-    bsfit_piece A = p[ia], B = p[i];
-    if (np < 2 || (!s->closed && i == 0) || p[ia].kind == FREE || p[i].kind == FREE) continue;
+    bsfit_piece A, B;
+    if ((!s->closed && i == 0) || p[ia].kind == FREE || p[i].kind == FREE) continue;
     if (p[ia].kind != LINE && p[i].kind != LINE) continue;
+    A = p[ia], B = p[i];
     if (join_pieces(s, &A, &md[ia], &B, &md[i]) && B.join == p[i].join) {
       p[ia] = A;
       p[i] = B;

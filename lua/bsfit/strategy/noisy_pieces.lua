@@ -76,8 +76,8 @@ local function weak_message(pieces, i)
 end
 
 -- The weak corners left to soften where others are strong (a made object): all but those
--- where two lines of LINE_CORNER_SAMPLES samples or more meet at LINE_CORNER_TURN degrees or
--- more in a stretch no sample saw: the corner lies farther than UNSAMPLED sigma from the
+-- where two lines of LINE_CORNER_SAMPLES samples or more meet at STEEP degrees or more in
+-- a stretch no sample saw: the corner lies farther than UNSAMPLED sigma from the
 -- step between the samples either side of it. Their evidence is weak because nothing
 -- samples the corner's neighbourhood (uneven or sparse samples: an L of 5 uneven samples
 -- per side at noise 3e-3 had corners worth 0.7 and 3 sigma^2, its nearest samples a fifth
@@ -87,11 +87,11 @@ end
 -- airfoil of 400 samples at noise 1e-3, read as pieces, got a second corner). Kept as
 -- corners, the sweep gained 7 sections (227 -> 234 of 390), 780 sections on other seeds 8
 -- (449 -> 457) and 780 denser ones 8 (635 -> 643); 400 smooth ones are unchanged.
-local LINE_CORNER_SAMPLES, LINE_CORNER_TURN, UNSAMPLED = 4, 60, 3
+local LINE_CORNER_SAMPLES, UNSAMPLED = 4, 3
 local function unsampled_line_corner(P, pieces, i, s)
   local p, q, m = pieces[i], pieces[(i - 2) % #pieces + 1], #P
   if not (p.kind == "line" and q.kind == "line" and p.count >= LINE_CORNER_SAMPLES
-          and q.count >= LINE_CORNER_SAMPLES and p.turn >= LINE_CORNER_TURN) then
+          and q.count >= LINE_CORNER_SAMPLES and p.turn >= STEEP) then
     return false
   end
   local ax, ay = P:get((q.first - 1 + q.count - 1) % m + 1)

@@ -163,29 +163,33 @@ local function tangent_circle(a, b, t, at_end, sweep)
   return { q[1] + s * n[1], q[2] + s * n[2] }
 end
 
--- How far the arc from a to b round centre c (in the direction of `sweep`) strays from
--- the model's circle: the largest of 16 samples' distances to it.
-local function off_model(p, a, b, c, sweep)
-  local r, a0, worst = dist(a, c), math.atan(a[2] - c[2], a[1] - c[1]), 0
+-- the signed angle from a to b around c
+local function angle(c, a, b)
+  local ax, ay, bx, by = a[1] - c[1], a[2] - c[2], b[1] - c[1], b[2] - c[2]
+  return math.atan(ax * by - ay * bx, ax * bx + ay * by)
+end
+
+-- the turn from a to b round c in the direction of the model's sweep (a whole turn when
+-- they coincide)
+local function sweep_round(p, a, b, c)
+  if a[1] == b[1] and a[2] == b[2] then return p.sweep end
+  local sweep = angle(c, a, b)
+  if (sweep > 0) ~= (p.sweep > 0) or sweep == 0 then
+    sweep = sweep + (p.sweep > 0 and 2 or -2) * math.pi
+  end
+  return sweep
+end
+
+-- How far the arc from a to b round centre c (in the model's direction) strays from the
+-- model's circle: the largest distance to it of 15 points inside the arc.
+local function off_model(p, a, b, c)
+  local r, a0, sweep, worst = dist(a, c), math.atan(a[2] - c[2], a[1] - c[1]), sweep_round(p, a, b, c), 0
   for k = 1, 15 do
     local t = a0 + sweep * k / 16
     local x = { c[1] + r * math.cos(t), c[2] + r * math.sin(t) }
     worst = math.max(worst, math.abs(dist(x, p.centre) - p.radius))
   end
   return worst
-end
-
--- the turn from a to b round c in the direction of the model's sweep (a whole turn when
--- they coincide)
-local function sweep_round(p, a, b, c)
-  local sweep = math.atan(b[2] - c[2], b[1] - c[1]) - math.atan(a[2] - c[2], a[1] - c[1])
-  if p.sweep > 0 then
-    while sweep <= 0 do sweep = sweep + 2 * math.pi end
-  else
-    while sweep >= 0 do sweep = sweep - 2 * math.pi end
-  end
-  if a[1] == b[1] and a[2] == b[2] then sweep = p.sweep end
-  return sweep
 end
 
 -- The centre of the arc drawn from a to b: on the ends' perpendicular bisector, so that the
@@ -210,8 +214,7 @@ local function arc_centre(p, t_start, t_end, slack)
       or t_end and tangent_circle(a, b, t_end, true, p.sweep)
   if not held then return c end
   slack = math.max(slack, 1e-9 * p.radius)
-  if off_model(p, a, b, held, sweep_round(p, a, b, held)) <=
-      off_model(p, a, b, c, sweep_round(p, a, b, c)) + slack then
+  if off_model(p, a, b, held) <= off_model(p, a, b, c) + slack then
     return held
   end
   return c
@@ -280,12 +283,11 @@ local function fillets(P, pieces, o)
         and B.join == "tangent" and (o.closed or (i > 1 and i < n)) then
       local cc, r, fa, fb = fillet_between(A, p, B)
       if cc then
-        local q = { start = fa, ["end"] = fb, centre = p.centre, radius = p.radius, sweep = p.sweep }
-        local sweep = sweep_round(q, fa, fb, cc)
+        local sweep = sweep_round(p, fa, fb, cc)
         local through = arc_centre(p, nil, nil, 0)
         local slack = math.max(o.sigma, 1e-9 * p.radius)
-        if math.abs(sweep) < 2 * math.pi and off_model(q, fa, fb, cc, sweep) <=
-            off_model(p, p.start, p["end"], through, sweep_round(p, p.start, p["end"], through)) + slack then
+        if math.abs(sweep) < 2 * math.pi and
+            off_model(p, fa, fb, cc) <= off_model(p, p.start, p["end"], through) + slack then
           A["end"], p.start, p["end"], B.start = fa, fa, fb, fb
           p.centre, p.radius, p.sweep = cc, r, sweep
           local q2, worst = 0, 0
@@ -406,12 +408,6 @@ function M.continues(pieces, i)
   if a == b or a.kind ~= "line" or b.kind ~= "line" then return false end
   local c = a.t_end[1] * b.t_start[1] + a.t_end[2] * b.t_start[2]
   return c >= math.cos(math.rad(CONTINUES_TURN))
-end
-
--- the signed angle from a to b around c
-local function angle(c, a, b)
-  local ax, ay, bx, by = a[1] - c[1], a[2] - c[2], b[1] - c[1], b[2] - c[2]
-  return math.atan(ax * by - ay * bx, ax * bx + ay * by)
 end
 
 -- how far along piece p from x to y (points on or next to its model): an arc's radius
