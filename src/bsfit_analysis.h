@@ -148,6 +148,20 @@ BSFIT_API bsfit_err bsfit_params_trusted(const double *pts, size_t m, int dim,
                                          double trust, double *u, const bsfit_allocator *a,
                                          bsfit_status *st);
 
+/** The points that are not trusted: weight below `trust` times the median weight (the
+** rule of bsfit_params_trusted).
+**
+** @param[in]  w      m positive, finite weights.
+** @param[in]  trust  fraction of the median weight, in [0, 1) (0: every point trusted).
+** @param[out] out    the 0-based indices of the untrusted points, increasing (room for m).
+** @param[out] n_out  how many there are (0 when every point is trusted).
+** @param[in]  a      allocator of the scratch (m doubles, only when the weights differ by
+**                    more than the factor trust); NULL = realloc.
+** @return BSFIT_OK, BSFIT_EWEIGHT (a weight <= 0 or not finite), BSFIT_EINVAL (trust out of
+**         range, NULL arguments), BSFIT_ENOMEM. O(m). */
+BSFIT_API bsfit_err bsfit_untrusted(const double *w, size_t m, double trust, size_t *out,
+                                    size_t *n_out, const bsfit_allocator *a, bsfit_status *st);
+
 /** Makes parameters agree with corners that lie between samples.
 **
 ** Chord-like parameters measure the chord Q_j Q_{j+1} across a corner, which cuts it:

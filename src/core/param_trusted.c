@@ -17,15 +17,39 @@ static bsfit_err check_weights(const double *w, size_t m, bsfit_status *st) {
   return BSFIT_OK;
 }
 
-/* median of the weights (copy, selection) */
-static bsfit_err median_weight(const double *w, size_t m, double *med, const bsfit_allocator *a,
-                               bsfit_status *st) {
+/* the trust cut: `trust` times the median weight (copy, selection) */
+static bsfit_err trust_cut(const double *w, size_t m, double trust, double *cut,
+                           const bsfit_allocator *a, bsfit_status *st) {
   double *tmp = bsfit__alloc(a, m * sizeof(double));
   if (tmp == NULL) return bsfit__fail(st, BSFIT_ENOMEM, "out of memory for %zu weights", m);
   memcpy(tmp, w, m * sizeof(double));
-  *med = bsfit__select(tmp, m, m / 2);
+  *cut = trust * bsfit__select(tmp, m, m / 2);
   bsfit__free(a, tmp, m * sizeof(double));
   return BSFIT_OK;
+}
+
+bsfit_err bsfit_untrusted(const double *w, size_t m, double trust, size_t *out, size_t *n_out,
+                          const bsfit_allocator *a, bsfit_status *st) {
+  size_t i, n = 0;
+  double lo = HUGE_VAL, hi = 0, cut = 0;
+  bsfit_err e;
+  if (n_out != NULL) *n_out = 0;
+  if (!(trust >= 0 && trust < 1))
+    return bsfit__fail(st, BSFIT_EINVAL, "trust %g must be in [0, 1)", trust);
+  if ((w == NULL && m > 0) || n_out == NULL || (out == NULL && m > 0))
+    return bsfit__fail(st, BSFIT_EINVAL, "NULL weights or output");
+  if ((e = check_weights(w, m, st)) != BSFIT_OK) return e;
+  for (i = 0; i < m; i++) {
+    if (w[i] < lo) lo = w[i];
+    if (w[i] > hi) hi = w[i];
+  }
+  /* every weight >= trust x max >= trust x median: no selection needed (equal weights) */
+  if (m == 0 || trust == 0 || !(trust * hi > lo)) return bsfit__ok(st);
+  if ((e = trust_cut(w, m, trust, &cut, a, st)) != BSFIT_OK) return e;
+  for (i = 0; i < m; i++)
+    if (w[i] < cut) out[n++] = i;
+  *n_out = n;
+  return bsfit__ok(st);
 }
 
 /* untrusted points between trusted indices a and b (walking forward, b after a
@@ -39,7 +63,7 @@ bsfit_err bsfit_params_trusted(const double *pts, size_t m, int dim, bsfit_param
                                int closed, const double *w, double trust, double *u,
                                const bsfit_allocator *a, bsfit_status *st) {
   size_t i, nt = 0, *idx = NULL, first, prev;
-  double med = 0, *sub = NULL, *su = NULL, shift;
+  double cut = 0, *sub = NULL, *su = NULL, shift;
   bsfit_err e;
   if (!(trust >= 0 && trust < 1))
     return bsfit__fail(st, BSFIT_EINVAL, "trust %g must be in [0, 1)", trust);
@@ -49,7 +73,7 @@ bsfit_err bsfit_params_trusted(const double *pts, size_t m, int dim, bsfit_param
   }
   if (pts == NULL || u == NULL) return bsfit__fail(st, BSFIT_EINVAL, "NULL points or parameters");
   if ((e = check_weights(w, m, st)) != BSFIT_OK) return e;
-  if ((e = median_weight(w, m, &med, a, st)) != BSFIT_OK) return e;
+  if ((e = trust_cut(w, m, trust, &cut, a, st)) != BSFIT_OK) return e;
   idx = bsfit__alloc(a, m * sizeof(size_t));
   sub = bsfit__alloc(a, m * (size_t)dim * sizeof(double));
   su = bsfit__alloc(a, m * sizeof(double));
@@ -58,12 +82,12 @@ bsfit_err bsfit_params_trusted(const double *pts, size_t m, int dim, bsfit_param
     goto done;
   }
   for (i = 0; i < m; i++)
-    if (w[i] >= trust * med) {
+    if (w[i] >= cut) {
       memcpy(sub + nt * (size_t)dim, pts + i * (size_t)dim, (size_t)dim * sizeof(double));
       idx[nt++] = i;
     }
   if (nt < 2) {
-    e = bsfit__fail(st, BSFIT_EDEGENERATE, "only %zu trusted point(s) (weight >= %g)", nt, trust * med);
+    e = bsfit__fail(st, BSFIT_EDEGENERATE, "only %zu trusted point(s) (weight >= %g)", nt, cut);
     goto done;
   }
   if ((e = bsfit_params(sub, nt, dim, kind, closed, su, st)) != BSFIT_OK) goto done;

@@ -6,6 +6,8 @@
 **   bs.weights.turning(P [, {closed = true}])
 **   bs.weights.spacing(P [, {closed = true}])
 **   bs.weights.uniform(P | n)                          ones: the rule that changes nothing
+**   bs.weights.untrusted(w [, trust = 0.1])            1-based indices of the weights below
+**                                                      trust x median ({} when none)
 ** P is a bsfit.Points of dim 2 or 3 or a table of points. `closed` defaults to true:
 ** the points are a cross-section, whose last point joins the first. `centered` (the
 ** circle through Q_{k-1}, Q_k, Q_{k+1} rather than the paper's Q_k, Q_{k+1}, Q_{k+2})
@@ -13,6 +15,8 @@
 ** checks the coordinates first so that the message counts points from 1.
 */
 #include "laux.h"
+
+#include <math.h>
 
 /* {====================================================================
 ** Rules
@@ -68,6 +72,36 @@ static int weights_uniform(lua_State *L) {
   return 1;
 }
 
+/* bs.weights.untrusted(w [, trust]): the points that bs.params_trusted and the automatic
+** strategy leave out of their chords, noise and pieces. A bad weight is data, not misuse
+** (it comes from a file): nil, "weight K is V (must be positive and finite)", "EWEIGHT". */
+static int weights_untrusted(lua_State *L) {
+  bsfit_vector_ud *w = bsfit__lua_tovector(L, 1);
+  lua_Number trust = luaL_optnumber(L, 2, 0.1);
+  bsfit_allocator a = bsfit__lua_allocator(L);
+  bsfit_status st;
+  size_t k, n = 0, *out;
+  bsfit_err e;
+  luaL_argcheck(L, trust >= 0 && trust < 1, 2, "trust must be in [0, 1)");
+  for (k = 0; k < w->n; k++)
+    if (!(w->x[k] > 0.0 && isfinite(w->x[k]))) { /* NaN fails the first test */
+      lua_pushnil(L);
+      lua_pushfstring(L, "weight %I is %f (must be positive and finite)", (lua_Integer)k + 1,
+                      (lua_Number)w->x[k]);
+      lua_pushliteral(L, "EWEIGHT");
+      return 3;
+    }
+  out = lua_newuserdatauv(L, (w->n > 0 ? w->n : 1) * sizeof(size_t), 0); /* freed by the GC */
+  e = bsfit_untrusted(w->x, w->n, trust, out, &n, &a, &st);
+  if (e != BSFIT_OK) return bsfit__lua_result(L, e, &st, 0, 0);
+  lua_createtable(L, (int)n, 0);
+  for (k = 0; k < n; k++) {
+    lua_pushinteger(L, (lua_Integer)out[k] + 1);
+    lua_rawseti(L, -2, (lua_Integer)k + 1);
+  }
+  return 1;
+}
+
 /* }==================================================================== */
 
 /* {====================================================================
@@ -77,7 +111,7 @@ static int weights_uniform(lua_State *L) {
 static const luaL_Reg weights_funcs[] = {
   {"circumradius", weights_circumradius}, {"turning", weights_turning},
   {"spacing", weights_spacing},           {"uniform", weights_uniform},
-  {NULL, NULL}};
+  {"untrusted", weights_untrusted},       {NULL, NULL}};
 
 /* sets bs.weights in the module table on the stack top */
 void bsfit__lua_lib_weights(lua_State *L) {

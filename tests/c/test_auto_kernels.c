@@ -9,6 +9,8 @@
 #include <stdint.h>
 
 #include <cmocka.h>
+#include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "bsfit.h"
@@ -74,6 +76,97 @@ static void test_trusted_params_errors(void **state) {
   w[2] = 1.0;
   assert_int_equal(bsfit_params_trusted(NULL, 6, 2, BSFIT_PARAM_CHORD, 1, w, 0.5, u, NULL, &st), BSFIT_EINVAL);
   assert_true(strlen(st.msg) > 0);
+}
+
+static int cmp_double(const void *a, const void *b) {
+  double x = *(const double *)a, y = *(const double *)b;
+  return (x > y) - (x < y);
+}
+
+/* the rule written out: sorted copy, element m / 2 (0-based) is the median */
+static size_t untrusted_by_sorting(const double *w, size_t m, double trust, size_t *out) {
+  static double sorted[400];
+  size_t i, n = 0;
+  memcpy(sorted, w, m * sizeof(double));
+  qsort(sorted, m, sizeof(double), cmp_double);
+  for (i = 0; i < m; i++)
+    if (w[i] < trust * sorted[m / 2]) out[n++] = i;
+  return n;
+}
+
+static void test_untrusted_is_the_median_rule(void **state) {
+  /* many sizes, seeds and kinds of weights: a few distinct values (files), continuous
+  ** spreads over decades, outliers of 1e-3 among ones, huge weights */
+  static double w[400];
+  static size_t got[400], want[400];
+  static const double trusts[] = {0.0, 0.05, 0.1, 0.5, 0.99};
+  test_rng r = {11};
+  int trial;
+  (void)state;
+  for (trial = 0; trial < 2000; trial++) {
+    size_t m = 1 + (size_t)(rng_uniform(&r) * 399), i, n = 99, nw;
+    int kind = trial % 4;
+    double trust = trusts[trial % 5];
+    for (i = 0; i < m; i++) {
+      double x = rng_uniform(&r);
+      w[i] = kind == 0 ? (x < 0.02 ? 1e-3 : 1.0)
+           : kind == 1 ? pow(10.0, -6.0 * x)
+           : kind == 2 ? (double)(1 + (int)(x * 3)) /* 1, 2, 3 */
+                       : (x < 0.05 ? 1e12 : 0.5 + x);
+    }
+    assert_int_equal(bsfit_untrusted(w, m, trust, got, &n, NULL, NULL), BSFIT_OK);
+    nw = untrusted_by_sorting(w, m, trust, want);
+    assert_int_equal(n, nw);
+    for (i = 0; i < n; i++) assert_int_equal(got[i], want[i]);
+  }
+}
+
+static void test_untrusted_agrees_with_trusted_params(void **state) {
+  /* bsfit_params_trusted computes its chords over the points bsfit_untrusted keeps: the
+  ** parameters of the kept points are those of the kept points alone (open data, where
+  ** no shift applies) */
+  static double xy[2 * 300], kept[2 * 300], w[300], u[300], uk[300];
+  static size_t out[300];
+  test_rng r = {12};
+  size_t i, j, k, n;
+  (void)state;
+  make_shape(&r, SHAPE_ELLIPSE, 300, 1, 1e-3, xy);
+  for (i = 0; i < 300; i++) w[i] = rng_uniform(&r) < 0.1 ? 1e-3 * (1 + rng_uniform(&r)) : 1 + rng_uniform(&r);
+  w[0] = w[299] = 1.0;
+  assert_int_equal(bsfit_untrusted(w, 300, 0.1, out, &n, NULL, NULL), BSFIT_OK);
+  assert_true(n > 10);
+  for (i = 0, j = 0, k = 0; i < 300; i++) {
+    if (k < n && out[k] == i) { k++; continue; }
+    kept[2 * j] = xy[2 * i], kept[2 * j + 1] = xy[2 * i + 1], j++;
+  }
+  assert_int_equal(bsfit_params_trusted(xy, 300, 2, BSFIT_PARAM_CHORD, 0, w, 0.1, u, NULL, NULL), BSFIT_OK);
+  assert_int_equal(bsfit_params(kept, j, 2, BSFIT_PARAM_CHORD, 0, uk, NULL), BSFIT_OK);
+  for (i = 0, j = 0, k = 0; i < 300; i++) {
+    if (k < n && out[k] == i) { k++; continue; }
+    assert_float_equal(u[i], uk[j], 1e-14);
+    j++;
+  }
+}
+
+static void test_untrusted_errors(void **state) {
+  double w[4] = {1, 2, 3, 4};
+  size_t out[4], n = 7;
+  bsfit_status st;
+  (void)state;
+  assert_int_equal(bsfit_untrusted(w, 4, 1.0, out, &n, NULL, &st), BSFIT_EINVAL);
+  assert_int_equal(n, 0);
+  assert_int_equal(bsfit_untrusted(w, 4, -0.1, out, &n, NULL, &st), BSFIT_EINVAL);
+  assert_int_equal(bsfit_untrusted(NULL, 4, 0.1, out, &n, NULL, &st), BSFIT_EINVAL);
+  assert_int_equal(bsfit_untrusted(w, 4, 0.1, NULL, &n, NULL, &st), BSFIT_EINVAL);
+  w[3] = -1.0;
+  assert_int_equal(bsfit_untrusted(w, 4, 0.1, out, &n, NULL, &st), BSFIT_EWEIGHT);
+  assert_non_null(strstr(st.msg, "weight 3"));
+  w[3] = INFINITY;
+  assert_int_equal(bsfit_untrusted(w, 4, 0.1, out, &n, NULL, &st), BSFIT_EWEIGHT);
+  w[3] = NAN;
+  assert_int_equal(bsfit_untrusted(w, 4, 0.1, out, &n, NULL, &st), BSFIT_EWEIGHT);
+  assert_int_equal(bsfit_untrusted(NULL, 0, 0.1, NULL, &n, NULL, &st), BSFIT_OK);
+  assert_int_equal(n, 0);
 }
 
 /* number of parameters (taken modulo 1 from t0) in [a, b) */
@@ -185,6 +278,9 @@ int main(void) {
     cmocka_unit_test(test_trusted_params_without_weights_are_chord_params),
     cmocka_unit_test(test_outlier_does_not_stretch_neighbours),
     cmocka_unit_test(test_trusted_params_errors),
+    cmocka_unit_test(test_untrusted_is_the_median_rule),
+    cmocka_unit_test(test_untrusted_agrees_with_trusted_params),
+    cmocka_unit_test(test_untrusted_errors),
     cmocka_unit_test(test_breaks_none_is_guarded_periodic_averaging),
     cmocka_unit_test(test_guard_with_clustered_parameters),
     cmocka_unit_test(test_square_with_corner_breaks_is_fitted_exactly),

@@ -194,6 +194,35 @@ static void test_self_intersections_match_brute_force(void **state) {
   }
 }
 
+/* Random closed polygons as degree-1 curves (every vertex a corner, each edge sampled
+** many times): the crossings are the polygon's own, counted pair by pair. Their edges run
+** every way, so the sweep's sort meets many short runs to merge (and long ones, on the
+** polygons of few vertices), up to hundreds of crossings. */
+static void test_self_intersections_of_random_polygons(void **state) {
+  static double V[2 * 41], knots[44];
+  test_rng r = {13};
+  int trial;
+  (void)state;
+  for (trial = 0; trial < 300; trial++) {
+    size_t nv = 4 + (size_t)(rng_uniform(&r) * 37), i, n = 0;
+    bsfit_curve c;
+    double where;
+    bsfit_curve_init(&c);
+    for (i = 0; i < nv; i++) {
+      V[2 * i] = rng_uniform(&r) * (1 + trial % 7);
+      V[2 * i + 1] = rng_uniform(&r);
+    }
+    V[2 * nv] = V[0], V[2 * nv + 1] = V[1]; /* closed: the last control point is the first */
+    knots[0] = 0;
+    for (i = 0; i <= nv; i++) knots[i + 1] = (double)i / (double)nv;
+    knots[nv + 2] = 1;
+    assert_int_equal(bsfit_curve_new(&c, 1, 2, nv + 1, knots, V, NULL, 0, NULL, NULL), BSFIT_OK);
+    assert_int_equal(bsfit_curve_self_intersections(&c, 50 * nv, &n, &where, NULL, NULL), BSFIT_OK);
+    assert_int_equal((int)n, (int)brute_crossings(V, nv));
+    bsfit_curve_free(&c);
+  }
+}
+
 /* A corner (a triple knot) whose second side leaves it back along the first, just above
 ** it, and turns down across it: a loop 1.5e-5 wide and 2.5e-4 of the domain long, within
 ** one step of 2000 even samples (which missed it). Leaving just below the first side, or
@@ -297,6 +326,7 @@ int main(void){
       cmocka_unit_test(test_radius_se_of_a_whole_circle),
       cmocka_unit_test(test_join_keeps_each_part),
       cmocka_unit_test(test_self_intersections_match_brute_force),
+      cmocka_unit_test(test_self_intersections_of_random_polygons),
       cmocka_unit_test(test_self_intersections_next_to_a_corner),
       cmocka_unit_test(test_scratch_through_the_allocator_and_interrupts),
       cmocka_unit_test(test_segment_errors),

@@ -226,6 +226,37 @@ T.test("uniform: ones, from points or a count", function()
            function() return bs.weights.uniform(-1) end)
 end)
 
+T.test("untrusted: the weights below trust x median, 1-based; bad weights are data", function()
+  -- the rule written out in Lua (sorted copy, element #w // 2 + 1) on many random sets
+  local rng = 7
+  local function uniform() rng = (rng * 1103515245 + 12345) % 2147483648; return rng / 2147483648 end
+  for trial = 1, 300 do
+    local m, w = 1 + math.floor(uniform() * 300), {}
+    for i = 1, m do
+      local x = uniform()
+      w[i] = trial % 3 == 0 and (x < 0.03 and 1e-3 or 1) or trial % 3 == 1 and 10 ^ (-5 * x)
+             or 1 + math.floor(3 * x)
+    end
+    local trust = ({ 0, 0.1, 0.5 })[trial % 3 + 1]
+    local sorted = { table.unpack(w) }
+    table.sort(sorted)
+    local cut, want = trust * sorted[m // 2 + 1], {}
+    for i = 1, m do if w[i] < cut then want[#want + 1] = i end end
+    local got = bs.weights.untrusted(trial % 2 == 0 and w or bs.vector.new(w), trust)
+    T.eq(#got, #want, "trial " .. trial .. ": how many")
+    for k = 1, #want do T.eq(got[k], want[k], "trial " .. trial .. ": index") end
+  end
+  T.eq(#bs.weights.untrusted({ 1, 1e-3, 1, 1 }), 1)
+  T.eq(bs.weights.untrusted({ 1, 1e-3, 1, 1 })[1], 2)
+  local none, msg, code = bs.weights.untrusted({ 1, 2, -1 })
+  T.eq(none, nil)
+  T.eq(msg, "weight 3 is -1.0 (must be positive and finite)")
+  T.eq(code, "EWEIGHT")
+  T.eq(select(2, bs.weights.untrusted({ 0 / 0 })):match("^weight 1 is"), "weight 1 is")
+  T.raises(argerr(2, "untrusted", "trust must be in %[0, 1%)"),
+           function() return bs.weights.untrusted({ 1, 2 }, 1) end)
+end)
+
 T.test("defaults of the weighting rules: closed = true", function()
   local pts = {{0, 0}, {4, 0}, {5, 3}, {2, 5}, {-1, 3}}
   for _, rule in ipairs{"circumradius", "turning", "spacing"} do

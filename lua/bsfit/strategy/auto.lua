@@ -332,8 +332,10 @@ end
 -- to every point with its weight. {} when the trusted points make no pieces.
 local function trusted_pieces(P, ctx, t)
   if not t.points or t.n < 6 then return {} end
-  local Q, idx, j = t.points, {}, 0
-  for i = 1, #P do if not t.isout[i] then j = j + 1; idx[j] = i end end
+  local Q = t.points
+  -- idx[j]: the index among all of the j-th trusted point, found when asked (spread asks
+  -- once per piece; a table of every index was a loop over all points in Lua)
+  local idx = setmetatable({}, { __index = function(_, j) return common.trusted_index(t, j) end })
   local pieces = exact_pieces(Q, ctx, thinned(Q))
   if pieces then ctx.segment_sigma = 0
   else
@@ -899,7 +901,7 @@ function steps.measure(P, ctx)
     local d = sharp.distances(ctx.curve, P, ctx.segment)
     local max, imax = d:max()
     return common.add_trusted(ctx, { residuals = d:totable(), rms = d:rms(), max = max or 0,
-                                     max_index = imax or 1 })
+                                     max_index = imax or 1 }, d)
   end
   local d = ctx.distances -- the fit's last projection, when it is of this very curve
   if ctx.distances_of ~= ctx.curve or d == nil then
@@ -907,7 +909,7 @@ function steps.measure(P, ctx)
   end
   local max, imax = d:max()
   return common.add_trusted(ctx, { residuals = d:totable(), rms = d:rms(), max = max or 0,
-                                   max_index = imax or 1 })
+                                   max_index = imax or 1 }, d)
 end
 
 -- }======================================================================

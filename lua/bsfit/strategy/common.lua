@@ -107,17 +107,23 @@ end
 -- Whether the strategy fits a closed curve (setting `closed`, default true).
 function M.closed(ctx) return ctx.settings.closed ~= false end
 
--- The per-point weights of the file (setting point_weights, a Vector or table) as a
--- Lua array, checked against the m points; nil without them.
+-- The per-point weights of the file (setting point_weights, a Vector or table), checked
+-- against the m points; nil without them.
 local function point_weights(pw, m)
   if pw == nil then return nil end
   local mt = getmetatable(pw)
   if type(pw) ~= "table" and not (type(mt) == "table" and mt.__name == "bsfit.Vector") then
     error("bad argument #2 to 'run' (option 'point_weights' must be a bsfit.Vector or table)", 0)
   end
-  local t = type(pw) == "table" and pw or pw:totable()
-  if #t ~= m then error(("point_weights has %d values for %d points"):format(#t, m), 0) end
-  return t
+  if #pw ~= m then error(("point_weights has %d values for %d points"):format(#pw, m), 0) end
+  if type(pw) == "table" then
+    for i = 1, m do
+      if type(pw[i]) ~= "number" then
+        error(("point_weights: value %d is %s (must be positive and finite)"):format(i, tostring(pw[i])), 0)
+      end
+    end
+  end
+  return pw
 end
 
 -- The setting trust (default 0.1), checked.
@@ -129,31 +135,14 @@ local function trust_of(ctx)
   return trust
 end
 
--- The element of rank #w // 2 + 1 of the array w (the median the C kernels select),
--- by counting equal values: files hold few distinct weights.
-local function median(w)
-  local count, keys = {}, {}
-  for i = 1, #w do
-    local v = w[i]
-    local c = count[v]
-    if c then count[v] = c + 1 else count[v] = 1; keys[#keys + 1] = v end
-  end
-  table.sort(keys)
-  local want, seen = #w // 2 + 1, 0
-  for _, v in ipairs(keys) do
-    seen = seen + count[v]
-    if seen >= want then return v end
-  end
-end
-
--- The trusted points (the rule of bs.params_trusted): weight at least `trust` (setting,
--- default 0.1) times the median of the point_weights. Returns nil when every point is
--- trusted (no point_weights, equal weights, trust 0), else a table
+-- The trusted points (the rule of bs.params_trusted, bs.weights.untrusted in C): weight at
+-- least `trust` (setting, default 0.1) times the median of the point_weights. Returns nil
+-- when every point is trusted (no point_weights, equal weights, trust 0), else a table
 --   { out = {untrusted indices, increasing}, isout = {[i] = true}, n = #trusted,
 --     points = Points of the trusted ones (nil when fewer than 3) }
 -- P: the run's points (default ctx.P). Computed once per run (kept in ctx.cache when
--- there is one). The work per point is two plain loops; what follows from it works on
--- the few untrusted points and the runs of trusted ones.
+-- there is one). What follows from it works on the few untrusted points and the runs of
+-- trusted ones.
 function M.trusted(ctx, P)
   if ctx.settings.point_weights == nil then return nil end
   local cache = ctx.cache or {}
@@ -162,27 +151,14 @@ function M.trusted(ctx, P)
   P = P or ctx.P
   local trust = trust_of(ctx)
   local w = point_weights(ctx.settings.point_weights, #P)
+  local out, msg = bs.weights.untrusted(w, trust)
+  if not out then error("point_weights: " .. msg:gsub("^weight", "value"), 0) end
   c = false
-  if trust > 0 then
-    local m, lo, hi = #w, math.huge, 0
-    for i = 1, m do
-      local v = w[i]
-      if type(v) ~= "number" or not (v > 0 and v < math.huge) then
-        error(("point_weights: value %d is %s (must be positive and finite)"):format(i, tostring(v)), 0)
-      end
-      if v < lo then lo = v end
-      if v > hi then hi = v end
-    end
-    if trust * hi > lo then -- else every weight is >= trust x max >= trust x median
-      local cut, out, isout = trust * median(w), {}, {}
-      for i = 1, m do
-        if w[i] < cut then out[#out + 1] = i; isout[i] = true end
-      end
-      if #out > 0 then
-        c = { out = out, isout = isout, n = m - #out }
-        if c.n >= 3 then c.points = M.subset_runs(P, out) end
-      end
-    end
+  if #out > 0 then
+    local isout = {}
+    for _, i in ipairs(out) do isout[i] = true end
+    c = { out = out, isout = isout, n = #P - #out }
+    if c.n >= 3 then c.points = M.subset_runs(P, out) end
   end
   cache.trusted = c
   return c or nil
@@ -771,18 +747,34 @@ end
 
 -- Adds max_trusted, rms_trusted and max_trusted_index to the measure r (its residuals
 -- a Lua array) when some points are untrusted (M.trusted): the same over the trusted
--- points only, what the fit was asked to follow. Returns r.
-function M.add_trusted(ctx, r)
+-- points only, what the fit was asked to follow. dv: the residuals as a Vector, when the
+-- caller has them (the untrusted few are zeroed in a copy, in C: no loop over every
+-- point in Lua). Returns r.
+function M.add_trusted(ctx, r, dv)
   local t = M.trusted(ctx)
   if t == nil then return r end
-  local d, isout, sum, tmax, ti = r.residuals, t.isout, 0, -1, 1
-  for i = 1, #d do
-    if not isout[i] then
-      sum = sum + d[i] * d[i]
-      if d[i] > tmax then tmax, ti = d[i], i end
+  local tmax, ti, rms
+  if dv then
+    local z = dv:copy()
+    for _, i in ipairs(t.out) do z:set(i, 0) end
+    tmax, ti = z:max()
+    rms = (z:rms() or 0) * math.sqrt(#z / t.n)
+    if not (tmax and tmax > 0) then -- all trusted residuals zero: the first trusted point's
+      tmax, ti = 0, 1
+      while t.isout[ti] do ti = ti + 1 end
     end
+  else
+    local d, isout, sum = r.residuals, t.isout, 0
+    tmax, ti = -1, 1
+    for i = 1, #d do
+      if not isout[i] then
+        sum = sum + d[i] * d[i]
+        if d[i] > tmax then tmax, ti = d[i], i end
+      end
+    end
+    rms = math.sqrt(sum / t.n)
   end
-  r.max_trusted, r.max_trusted_index, r.rms_trusted = tmax, ti, math.sqrt(sum / t.n)
+  r.max_trusted, r.max_trusted_index, r.rms_trusted = tmax, ti, rms
   return r
 end
 
