@@ -302,6 +302,55 @@ static void test_scratch_through_the_allocator_and_interrupts(void **state) {
   assert_int_equal((int)cnt.live, 0);
 }
 
+/* an allocator that fails its n-th allocation (counting live bytes) */
+typedef struct alloc_failing {
+  long calls, fail_at;
+  size_t live;
+} alloc_failing;
+
+static void *failing_alloc(void *ud, void *p, size_t osz, size_t nsz) {
+  alloc_failing *c = ud;
+  if (nsz == 0) {
+    c->live -= osz;
+    free(p);
+    return NULL;
+  }
+  if (++c->calls == c->fail_at) return NULL;
+  p = realloc(p, nsz);
+  if (p) c->live += nsz - osz;
+  return p;
+}
+
+/* Each allocation of the crossing test failing in turn: BSFIT_ENOMEM, nothing left live;
+** past the last one, the crossing found. */
+static void test_self_intersections_out_of_memory(void **state) {
+  static const double knots[] = {0, 0, 0, 0, 0.5, 0.5, 0.5, 1, 1, 1, 1};
+  double ctrl[] = {-1, 0, -0.66, 0, -0.33, 0, 0, 0, -0.01, 0.0005, -0.01, -1, 1, -1};
+  bsfit_curve c;
+  long n, total;
+  (void)state;
+  bsfit_curve_init(&c);
+  assert_int_equal(bsfit_curve_new(&c, 3, 2, 7, knots, ctrl, NULL, 0, NULL, NULL), BSFIT_OK);
+  {
+    alloc_failing f = {0, 0, 0};
+    bsfit_allocator a = {failing_alloc, &f, NULL};
+    size_t k = 0;
+    assert_int_equal(bsfit_curve_self_intersections(&c, 2000, &k, NULL, &a, NULL), BSFIT_OK);
+    assert_int_equal((int)k, 1);
+    total = f.calls;
+    assert_true(total >= 4);
+  }
+  for (n = 1; n <= total; n++) {
+    alloc_failing f = {0, n, 0};
+    bsfit_allocator a = {failing_alloc, &f, NULL};
+    size_t k = 5;
+    assert_int_equal(bsfit_curve_self_intersections(&c, 2000, &k, NULL, &a, NULL), BSFIT_ENOMEM);
+    assert_int_equal((int)k, 0);
+    assert_int_equal((int)f.live, 0);
+  }
+  bsfit_curve_free(&c);
+}
+
 static void test_segment_errors(void **state) {
   double xy[6] = {0, 0, 1, 0, 0, 1}, same[6] = {1, 1, 1, 1, 1, 1}, bad[6] = {0, 0, NAN, 0, 0, 1};
   bsfit_piece p[8];
@@ -328,6 +377,7 @@ int main(void){
       cmocka_unit_test(test_self_intersections_match_brute_force),
       cmocka_unit_test(test_self_intersections_of_random_polygons),
       cmocka_unit_test(test_self_intersections_next_to_a_corner),
+      cmocka_unit_test(test_self_intersections_out_of_memory),
       cmocka_unit_test(test_scratch_through_the_allocator_and_interrupts),
       cmocka_unit_test(test_segment_errors),
   };

@@ -82,6 +82,12 @@ static bsfit_err run_trusted(fixture *f, const bsfit_allocator *a, bsfit_status 
   for (i = 0; i < 2000; i++) f->dist[i] = i % 10 == 0 ? 0.01 : 1.0; /* weights */
   return bsfit_params_trusted(f->pts, 2000, 2, BSFIT_PARAM_CHORD, 1, f->dist, 0.5, f->u, a, st);
 }
+static bsfit_err run_untrusted(fixture *f, const bsfit_allocator *a, bsfit_status *st) {
+  static size_t out[2000];
+  size_t i, n;
+  for (i = 0; i < 2000; i++) f->dist[i] = i % 10 == 0 ? 0.01 : 1.0; /* weights */
+  return bsfit_untrusted(f->dist, 2000, 0.5, out, &n, a, st);
+}
 static bsfit_err run_breaks(fixture *f, const bsfit_allocator *a, bsfit_status *st) {
   const double corners[] = {0, 500, 1000, 1500};
   size_t N, i;
@@ -130,6 +136,7 @@ static void test_enomem_every_allocation(void **state) {
   enomem_loop(f, run_noise, 0, "bsfit_noise_sigma");
   enomem_loop(f, run_breaks, 0, "bsfit_knots_place_breaks");
   enomem_loop(f, run_trusted, 0, "bsfit_params_trusted");
+  enomem_loop(f, run_untrusted, 0, "bsfit_untrusted");
 }
 
 /* }==================================================================== */
