@@ -321,12 +321,19 @@ void bsfit__lua_checkparams(lua_State *L, int arg, const double *u, size_t n) {
                                             number_text(L, u[i - 1])));
 }
 
-void bsfit__lua_checkweights(lua_State *L, int arg, const double *w, size_t n) {
+int bsfit__lua_pushbadweight(lua_State *L, const double *w, size_t n) {
   size_t i;
   for (i = 0; i < n; i++)
-    if (!(w[i] > 0.0 && isfinite(w[i]))) /* NaN fails the first test */
-      luaL_argerror(L, arg, lua_pushfstring(L, "weight %I is %s (must be positive and finite)",
-                                            (lua_Integer)i + 1, number_text(L, w[i])));
+    if (!(w[i] > 0.0 && isfinite(w[i]))) { /* NaN fails the first test */
+      lua_pushfstring(L, "weight %I is %s (must be positive and finite)", (lua_Integer)i + 1,
+                      number_text(L, w[i]));
+      return 1;
+    }
+  return 0;
+}
+
+void bsfit__lua_checkweights(lua_State *L, int arg, const double *w, size_t n) {
+  if (bsfit__lua_pushbadweight(L, w, n)) luaL_argerror(L, arg, lua_tostring(L, -1));
 }
 
 /* }==================================================================== */

@@ -148,6 +148,9 @@ size_t bsfit__lua_checkcount(lua_State *L, int arg, lua_Integer lo, lua_Integer 
 **   `weight 2 is -1 (must be positive and finite)` */
 void bsfit__lua_checkfinite(lua_State *L, int arg, const bsfit_points_ud *P);
 void bsfit__lua_checkweights(lua_State *L, int arg, const double *w, size_t n);
+/* The same test for weights that are data, not misuse: pushes the message of the first
+** bad weight and returns 1, or returns 0 (nothing pushed) when all are good. */
+int bsfit__lua_pushbadweight(lua_State *L, const double *w, size_t n);
 /* n knot values: finite, non-decreasing and, when p >= 0, no value more than p + 1
 ** times (`knot 3 is not finite`, `knots decrease at knot 5 (0.5 < 1)`,
 ** `knots 1..3 equal 0: multiplicity above degree+1 = 2`). */

@@ -16,8 +16,6 @@
 */
 #include "laux.h"
 
-#include <math.h>
-
 /* {====================================================================
 ** Rules
 ** ===================================================================== */
@@ -83,14 +81,12 @@ static int weights_untrusted(lua_State *L) {
   size_t k, n = 0, *out;
   bsfit_err e;
   luaL_argcheck(L, trust >= 0 && trust < 1, 2, "trust must be in [0, 1)");
-  for (k = 0; k < w->n; k++)
-    if (!(w->x[k] > 0.0 && isfinite(w->x[k]))) { /* NaN fails the first test */
-      lua_pushnil(L);
-      lua_pushfstring(L, "weight %I is %f (must be positive and finite)", (lua_Integer)k + 1,
-                      (lua_Number)w->x[k]);
-      lua_pushliteral(L, "EWEIGHT");
-      return 3;
-    }
+  if (bsfit__lua_pushbadweight(L, w->x, w->n)) {
+    lua_pushnil(L);
+    lua_insert(L, -2);
+    lua_pushliteral(L, "EWEIGHT");
+    return 3;
+  }
   out = lua_newuserdatauv(L, (w->n > 0 ? w->n : 1) * sizeof(size_t), 0); /* freed by the GC */
   e = bsfit_untrusted(w->x, w->n, trust, out, &n, &a, &st);
   if (e != BSFIT_OK) return bsfit__lua_result(L, e, &st, 0, 0);

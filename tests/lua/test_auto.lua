@@ -340,6 +340,32 @@ T.test("down-weighted gross outliers are ignored (fit and parameters)", function
   T.ok(rep.max_trusted and rep.max_trusted < 6e-3, "max over trusted " .. tostring(rep.max_trusted))
   T.ok(rep.max > 0.3, "max over all points " .. rep.max)
   T.ok(rep.rms_trusted < rep.rms, "rms over trusted below rms")
+  -- the trusted measure is the residuals' own over the points of weight 1, for auto and
+  -- for carvalho (common.measure_of, summed in C)
+  for _, r in ipairs { rep, select(2, carvalho.run(P, { point_weights = bs.vector.new(w) })) } do
+    local sum, top, at, n = 0, -1, 0, 0
+    for i, d in ipairs(r.residuals) do
+      if w[i] == 1 then
+        n, sum = n + 1, sum + d * d
+        if d > top then top, at = d, i end
+      end
+    end
+    T.near(r.rms_trusted, math.sqrt(sum / n), 1e-12, "rms over trusted")
+    T.eq(r.max_trusted, top, "max over trusted")
+    T.eq(r.max_trusted_index, at, "index of the max over trusted")
+  end
+end)
+
+T.test("bad point weights name the value, counted from 1", function()
+  local P = bs.points.new(synth.sample_smooth(synth.smooth.ellipse, 50, false))
+  for _, bad in ipairs { -2, 0, 0 / 0, math.huge, "x" } do
+    local w = {}
+    for i = 1, #P do w[i] = 1 end
+    w[7] = bad
+    local ok, err = pcall(auto.run, P, { point_weights = w })
+    T.ok(not ok and err:match("^point_weights: value 7 is .* %(must be positive and finite%)$"),
+         "weight " .. tostring(bad) .. ": " .. tostring(err))
+  end
 end)
 
 T.test("every step can be switched off or replaced", function()

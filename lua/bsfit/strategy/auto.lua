@@ -898,18 +898,13 @@ end
 
 function steps.measure(P, ctx)
   if sharp_path(ctx) then
-    local d = sharp.distances(ctx.curve, P, ctx.segment)
-    local max, imax = d:max()
-    return common.add_trusted(ctx, { residuals = d:totable(), rms = d:rms(), max = max or 0,
-                                     max_index = imax or 1 }, d)
+    return common.measure_of(ctx, sharp.distances(ctx.curve, P, ctx.segment))
   end
   local d = ctx.distances -- the fit's last projection, when it is of this very curve
   if ctx.distances_of ~= ctx.curve or d == nil then
     d = select(2, ctx.curve:project(P, ctx.params_final or ctx.params, NEWTON))
   end
-  local max, imax = d:max()
-  return common.add_trusted(ctx, { residuals = d:totable(), rms = d:rms(), max = max or 0,
-                                   max_index = imax or 1 }, d)
+  return common.measure_of(ctx, d)
 end
 
 -- }======================================================================

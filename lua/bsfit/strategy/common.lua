@@ -328,16 +328,27 @@ end
 -- Deviations: distance of every point from the final curve
 -- =======================================================================
 
--- Closest-point distances from the points of P to curve C: a Lua array, the RMS,
--- the maximum and its (1-based) index. This is the measure every strategy reports,
--- so that their numbers compare (a fit's own residuals are measured at the
--- parameters ū_k, which the paper's closing step changes). One C call: the curve is
--- sampled once, each point bracketed by its nearest sample and refined by Newton.
-function M.deviations(C, P)
-  local _, dv = C:closest_many(P)
-  -- the RMS and the first maximum in C (the same sums in the same order as a Lua loop)
+-- The measure of the distances dv (a Vector, one per point of the run) that every strategy
+-- reports: { residuals = a Lua array, rms, max, max_index (1-based) }, and over the
+-- trusted points only when some are not (M.trusted: max_trusted, max_trusted_index,
+-- rms_trusted, what the fit was asked to follow). The sums and the first maximum are
+-- taken in C; the untrusted few are zeroed in a copy, so no loop over every point runs
+-- in Lua.
+function M.measure_of(ctx, dv)
   local max, imax = dv:max()
-  return dv:totable(), dv:rms(), max, imax
+  local r = { residuals = dv:totable(), rms = dv:rms() or 0, max = max or 0, max_index = imax or 1 }
+  local t = M.trusted(ctx)
+  if t == nil then return r end
+  local z = dv:copy()
+  for _, i in ipairs(t.out) do z:set(i, 0) end
+  local tmax, ti = z:max()
+  if not (tmax and tmax > 0) then -- every trusted residual zero: the first trusted point's
+    tmax, ti = 0, 1
+    while t.isout[ti] do ti = ti + 1 end
+  end
+  r.max_trusted, r.max_trusted_index = tmax, ti
+  r.rms_trusted = (z:rms() or 0) * math.sqrt(#z / t.n)
+  return r
 end
 
 -- }======================================================================
@@ -745,44 +756,14 @@ function M.report(ctx)
   return rep
 end
 
--- Adds max_trusted, rms_trusted and max_trusted_index to the measure r (its residuals
--- a Lua array) when some points are untrusted (M.trusted): the same over the trusted
--- points only, what the fit was asked to follow. dv: the residuals as a Vector, when the
--- caller has them (the untrusted few are zeroed in a copy, in C: no loop over every
--- point in Lua). Returns r.
-function M.add_trusted(ctx, r, dv)
-  local t = M.trusted(ctx)
-  if t == nil then return r end
-  local tmax, ti, rms
-  if dv then
-    local z = dv:copy()
-    for _, i in ipairs(t.out) do z:set(i, 0) end
-    tmax, ti = z:max()
-    rms = (z:rms() or 0) * math.sqrt(#z / t.n)
-    if not (tmax and tmax > 0) then -- all trusted residuals zero: the first trusted point's
-      tmax, ti = 0, 1
-      while t.isout[ti] do ti = ti + 1 end
-    end
-  else
-    local d, isout, sum = r.residuals, t.isout, 0
-    tmax, ti = -1, 1
-    for i = 1, #d do
-      if not isout[i] then
-        sum = sum + d[i] * d[i]
-        if d[i] > tmax then tmax, ti = d[i], i end
-      end
-    end
-    rms = math.sqrt(sum / t.n)
-  end
-  r.max_trusted, r.max_trusted_index, r.rms_trusted = tmax, ti, rms
-  return r
-end
-
--- The measure step: deviations of the original points from ctx.curve (and over the
--- trusted points, M.add_trusted).
+-- The measure step: closest-point distances from the original points to ctx.curve (the
+-- measure every strategy reports, so that their numbers compare: a fit's own residuals
+-- are measured at the parameters ū_k, which the paper's closing step changes). One C
+-- call: the curve is sampled once, each point bracketed by its nearest sample and
+-- refined by Newton.
 function M.measure(P, ctx)
-  local d, rms, max, imax = M.deviations(ctx.curve, P)
-  return M.add_trusted(ctx, { residuals = d, rms = rms, max = max, max_index = imax })
+  local _, dv = ctx.curve:closest_many(P)
+  return M.measure_of(ctx, dv)
 end
 
 -- }======================================================================
