@@ -645,6 +645,12 @@ static int meet(const seg_section *s, const bsfit_piece *A, const seg_model *ma,
   return angle <= fmin(lim, 0.1) ? BSFIT_JOIN_TANGENT : BSFIT_JOIN_CORNER;
 }
 
+/* segment_internal.h */
+int bsfit__segment_meet(const seg_section *s, const bsfit_piece *A, const seg_model *ma,
+                        const bsfit_piece *B, const seg_model *mb, double *x) {
+  return meet(s, A, ma, B, mb, x);
+}
+
 /* }==================================================================== */
 
 /* {====================================================================
@@ -1146,6 +1152,7 @@ static size_t finish_pieces(const seg_section *s, bsfit_piece *p, seg_model *md,
   if (s->noisy) np = arcs_take_lines(s, p, md, np);
   rebalance(s, p, md, np);
   bsfit__cover_fillets(s, p, md, np);
+  np = bsfit__split_corner_arcs(s, p, md, np);
   if (np == 1 && s->closed && p[0].kind == ARC &&
       goes_round(s, &p[0], &md[0])) { /* a whole circle */
     bsfit__model_foot(&md[0], sample(s, p[0].first), p[0].start, p[0].t_start);

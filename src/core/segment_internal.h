@@ -109,4 +109,15 @@ void bsfit__refit_fillets(const seg_section *s, bsfit_piece *p, seg_model *md, s
 ** joins then find it tangent) */
 void bsfit__cover_fillets(const seg_section *s, bsfit_piece *p, seg_model *md, size_t np);
 
+/* segment.c: where A and B (B after A) meet: 0 (nowhere between them), BSFIT_JOIN_CORNER or
+** BSFIT_JOIN_TANGENT, the point written to x */
+int bsfit__segment_meet(const seg_section *s, const bsfit_piece *A, const seg_model *ma,
+                        const bsfit_piece *B, const seg_model *mb, double *x);
+
+/* segment_corner_arcs.c: under noise, on a sparse section, each arc that fails to meet a
+** neighbour becomes the two lines of its samples (and up to two of each neighbour's) where
+** they meet each other and the neighbours and explain the samples better by Akaike's price;
+** p and md have room for np more; returns the new count */
+size_t bsfit__split_corner_arcs(const seg_section *s, bsfit_piece *p, seg_model *md, size_t np);
+
 #endif

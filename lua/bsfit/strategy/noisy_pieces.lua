@@ -88,12 +88,16 @@ end
 -- corners, the sweep gained 7 sections (227 -> 234 of 390), 780 sections on other seeds 8
 -- (449 -> 457) and 780 denser ones 8 (635 -> 643); 400 smooth ones are unchanged.
 local LINE_CORNER_SAMPLES, UNSAMPLED = 4, 3
+-- two lines of LINE_CORNER_SAMPLES samples or more meeting at STEEP degrees or more
+local function steep_line_corner(pieces, i)
+  local p, q = pieces[i], pieces[(i - 2) % #pieces + 1]
+  return p.kind == "line" and q.kind == "line" and p.count >= LINE_CORNER_SAMPLES
+         and q.count >= LINE_CORNER_SAMPLES and p.turn >= STEEP
+end
+
 local function unsampled_line_corner(P, pieces, i, s)
+  if not steep_line_corner(pieces, i) then return false end
   local p, q, m = pieces[i], pieces[(i - 2) % #pieces + 1], #P
-  if not (p.kind == "line" and q.kind == "line" and p.count >= LINE_CORNER_SAMPLES
-          and q.count >= LINE_CORNER_SAMPLES and p.turn >= STEEP) then
-    return false
-  end
   local ax, ay = P:get((q.first - 1 + q.count - 1) % m + 1)
   local bx, by = P:get(p.first)
   local x, y = p.start[1], p.start[2]
@@ -142,13 +146,47 @@ local function screen(P, pieces, s, sigma)
 end
 
 -- the pieces with each weak corner softened into a bend (sharp.soften), or nil and why
-local function soften(P, pieces, weak)
+local function softened(P, pieces, weak)
   for k = #weak, 1, -1 do
     local soft = sharp.soften(P, pieces, weak[k])
     if not soft then return nil, weak_message(pieces, weak[k]) end
     pieces = soft
   end
   return pieces
+end
+
+-- The weak corners between two steep lines whose bend, drawn, passes farther than UNSAMPLED
+-- sigma from them are kept too: the test above measures the step between the samples
+-- either side, but the bend is drawn tangent to both lines from one sample farther back
+-- and cuts a corner more than that step does (a T with serifs of 6 samples per side at
+-- noise 1e-3: a corner of 92 degrees worth 9.9 sigma^2, its step 3 sigma from it, its bend
+-- 4.3). Returns the weak corners left to soften.
+local function bends_within(P, pieces, weak, soft, s, closed)
+  local steep = {}
+  for k, i in ipairs(weak) do
+    if steep_line_corner(pieces, i) then steep[#steep + 1] = k end
+  end
+  if #steep == 0 then return weak end
+  local made, C = pcall(sharp.assemble, P, soft, { closed = closed, sigma = s })
+  if not made then return weak end -- refused below, as the pieces make no curve
+  local out, cut = {}, {}
+  for _, k in ipairs(steep) do
+    local x = pieces[weak[k]].start
+    local _, d = C:closest(x[1], x[2])
+    if d > UNSAMPLED * s then cut[k] = true end
+  end
+  for k, i in ipairs(weak) do
+    if not cut[k] then out[#out + 1] = i end
+  end
+  return out
+end
+
+local function soften(P, pieces, weak, s, closed)
+  local soft, why = softened(P, pieces, weak)
+  if not soft then return nil, why end
+  local left = bends_within(P, pieces, weak, soft, s, closed)
+  if #left == #weak then return soft end
+  return softened(P, pieces, left)
 end
 
 -- The one curve of the pieces and its largest distance to a sample, or nil and why: it
@@ -180,7 +218,7 @@ function M.at(P, s, sigma, closed)
   local weak
   weak, why = screen(P, pieces, s, sigma)
   if not weak then return nil, why, found end
-  pieces, why = soften(P, pieces, weak)
+  pieces, why = soften(P, pieces, weak, s, closed)
   if not pieces then return nil, why, found end
   why = sharp.degenerate(pieces) or sharp.far_corner(P, pieces)
   if why then return nil, why, found end
