@@ -33,6 +33,8 @@
 --   - no piece degenerate, no corner farther from its samples than the longest step;
 --   - they make one curve (bs.curve.join), which stays within 6 sigma of every sample and
 --     does not cross itself.
+-- Pieces refused at the noise read off them are tried at the next two levels of the noise
+-- search (M.find, RETRY_LEVELS).
 -- The evidence of a corner (how much worse one smooth curve through both its sides explains
 -- their samples, in sigma^2) is, without a corner, about chi-square with the two models'
 -- one or two more parameters: above 14 one time in a thousand. The estimate of sigma from
@@ -228,10 +230,30 @@ function M.at(P, s, sigma, closed)
   return pieces, nil, found
 end
 
+-- The noise search (bs.geom.segment_sigma) takes the first level whose pooled residual
+-- matches it; on a sparse section the window of matching levels is narrow, and its first
+-- level can be one at which the cover is wrong (a gear's tip arcs of 9 samples read at
+-- 1.4 times the true noise as lines that meet nowhere). Where the pieces at that level are
+-- refused, the next RETRY_LEVELS levels of the search's step (10^(1/4)) are tried, each
+-- through every test, while they stay under the windows' agreement (AGREE): the first
+-- that passes is taken. The sweep went from 237 to 241 sections within the floor, 780 on
+-- other seeds from 469 to 479, none lost; 600 smooth noisy sections are unchanged.
+local RETRY_LEVELS, LEVEL_STEP = 2, 10 ^ 0.25
+
 function M.find(P, sigma, closed)
   local s, why, disagreed = noise_of_pieces(P, sigma, closed)
   if not s then return nil, why, { disagreed = disagreed or sigma } end
-  return M.at(P, s, sigma, closed)
+  local pieces, found
+  pieces, why, found = M.at(P, s, sigma, closed)
+  local level = s
+  for _ = 1, RETRY_LEVELS do
+    if pieces then break end
+    level = level * LEVEL_STEP
+    if not (level < AGREE * sigma) then break end
+    local p2, _, f2 = M.at(P, level, sigma, closed)
+    if p2 then return p2, nil, f2 end
+  end
+  return pieces, why, found
 end
 
 return M
