@@ -31,7 +31,7 @@ local FLOOR = { pieces = 128, within = 150, corners = 0.98, radii = 0.85 }
 T.test("dense noisy sections of lines and arcs go through their pieces: corners within a sample, "
        .. "radii within 2%, no loop", function()
   local tot = { n = 0, pieces = 0, within = 0, c = 0, cok = 0, r = 0, rok = 0, joins = 0, kinks = 0, kink = 0 }
-  for c in shapes.sweep_cases { pers = { 100, 300 } } do
+  for c in shapes.sweep_cases { pers = { 100, 300 }, thin = true } do
     local what = ("%s %d per side noise %g %s"):format(c.name, c.per, c.rel, c.uneven and "uneven" or "even")
     local ok, C, rep = pcall(auto.run, bs.points.new(c.pts))
     T.ok(ok, what .. ": " .. tostring(ok or C))
@@ -51,10 +51,12 @@ T.test("dense noisy sections of lines and arcs go through their pieces: corners 
   end
   print(("# %d sections: %d through the pieces, %d within 3 sigma + 1e-3; corners %d/%d within a "
          .. "sample, radii %d/%d within 2%%"):format(tot.n, tot.pieces, tot.within, tot.cok, tot.c, tot.rok, tot.r))
-  T.ok(tot.pieces >= FLOOR.pieces, ("%d sections through the pieces"):format(tot.pieces))
-  T.ok(tot.within >= FLOOR.within, ("%d sections within the floor"):format(tot.within))
-  T.ok(tot.cok >= FLOOR.corners * tot.c, ("corners within a sample: %d of %d"):format(tot.cok, tot.c))
-  T.ok(tot.rok >= FLOOR.radii * tot.r, ("radii within 2%%: %d of %d"):format(tot.rok, tot.r))
+  if not shapes.thinned then -- the floors hold the whole sweep (the normal build's)
+    T.ok(tot.pieces >= FLOOR.pieces, ("%d sections through the pieces"):format(tot.pieces))
+    T.ok(tot.within >= FLOOR.within, ("%d sections within the floor"):format(tot.within))
+    T.ok(tot.cok >= FLOOR.corners * tot.c, ("corners within a sample: %d of %d"):format(tot.cok, tot.c))
+    T.ok(tot.rok >= FLOOR.radii * tot.r, ("radii within 2%%: %d of %d"):format(tot.rok, tot.r))
+  end
   -- G1 as drawn at every tangent join between lines and arcs: fillets between two lines are
   -- drawn tangent to both (8 of 134 joins turned by up to 0.44 degrees before)
   print(("# tangent joins: %d, %d turn by more than 0.1 degrees as drawn, the most %.3g")
@@ -203,7 +205,7 @@ end)
 -- fewer than 2 samples; and bs.geom.segment_sigma, reading 500 of them, finds the noise.
 T.test("dense noisy sections: every sample in a piece, none of too few; the noise of 500 samples", function()
   local n, near = 0, 0
-  for c in shapes.sweep_cases { pers = { 60, 100, 300 }, unevens = { false } } do
+  for c in shapes.sweep_cases { pers = { 60, 100, 300 }, unevens = { false }, thin = true } do
     local P = bs.points.new(c.pts)
     local what = ("%s %d per side noise %g"):format(c.name, c.per, c.rel)
     local pieces = bs.geom.segment(P, { closed = true, sigma = c.sigma })
@@ -226,7 +228,7 @@ T.test("dense noisy sections: every sample in a piece, none of too few; the nois
     if math.abs(s / c.sigma - 1) <= 0.2 then near = near + 1 end
   end
   print(("# segment_sigma within 20%% of the true noise on %d of %d dense sections"):format(near, n))
-  T.ok(near >= 0.85 * n, ("segment_sigma within 20%% on %d of %d"):format(near, n))
+  T.ok(shapes.thinned or near >= 0.85 * n, ("segment_sigma within 20%% on %d of %d"):format(near, n))
 end)
 
 -- A dense section's cover is found on every k-th sample and each boundary then placed among
@@ -237,7 +239,7 @@ end)
 -- noise 1e-4): its curve zig-zagged there and crossed itself.
 T.test("dense noisy sections: each line holds samples that fix its direction", function()
   local bad, lines = {}, 0
-  for c in shapes.sweep_cases { pers = { 100, 300 }, unevens = { true } } do
+  for c in shapes.sweep_cases { pers = { 100, 300 }, unevens = { true }, thin = true } do
     local P = bs.points.new(c.pts)
     local tol = 4 * c.sigma
     for i, p in ipairs(bs.geom.segment(P, { closed = true, sigma = c.sigma })) do
@@ -257,7 +259,7 @@ T.test("dense noisy sections: each line holds samples that fix its direction", f
       end
     end
   end
-  T.ok(lines >= 500, ("%d lines looked at"):format(lines))
+  T.ok(shapes.thinned or lines >= 500, ("%d lines looked at"):format(lines))
   T.eq(#bad, 0, table.concat(bad, "; "))
 end)
 
@@ -268,7 +270,7 @@ end)
 -- of its samples (a free run where no line fits either).
 T.test("dense noisy sections: every line and arc is fitted (a finite max)", function()
   local bad, models = {}, 0
-  for c in shapes.sweep_cases { pers = { 100 } } do
+  for c in shapes.sweep_cases { pers = { 100 }, thin = true } do
     local P = bs.points.new(c.pts)
     local s = bs.geom.segment_sigma(P, { closed = true })
     for i, p in ipairs(s > 0 and bs.geom.segment(P, { closed = true, sigma = s }) or {}) do
@@ -279,7 +281,7 @@ T.test("dense noisy sections: every line and arc is fitted (a finite max)", func
       end
     end
   end
-  T.ok(models >= 500, ("%d lines and arcs looked at"):format(models))
+  T.ok(shapes.thinned or models >= 500, ("%d lines and arcs looked at"):format(models))
   T.eq(#bad, 0, table.concat(bad, "; "))
 end)
 

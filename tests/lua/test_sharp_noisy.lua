@@ -90,7 +90,7 @@ local FLOOR = { within = 241, pieces = 288, pieces_within = 234, corners = 0.99,
 T.test("sparse and noisy sections: no error, closed, no loop; the issue's numbers measured on all", function()
   local rows, tot = {}, { n = 0, pieces = 0, within = 0, pw = 0, c = 0, cok = 0, r = 0, rok = 0,
                          joins = 0, kinks = 0, kink = 0 }
-  for c in shapes.sweep_cases() do
+  for c in shapes.sweep_cases { thin = true } do
     local r = run_case(c)
     local key = ("%2d per side, noise %g"):format(c.per, c.rel)
     local row = rows[key] or { n = 0, pieces = 0, within = 0, worst = 0 }
@@ -118,11 +118,13 @@ T.test("sparse and noisy sections: no error, closed, no loop; the issue's number
   print(("# all: %d sections, %d through the pieces (%d of them within), %d within; corners %d/%d "
          .. "within a sample, radii %d/%d within 2%%"):format(tot.n, tot.pieces, tot.pw, tot.within,
          tot.cok, tot.c, tot.rok, tot.r))
-  T.ok(tot.within >= FLOOR.within, ("%d sections within the Hausdorff floor"):format(tot.within))
-  T.ok(tot.pieces >= FLOOR.pieces, ("%d sections through the pieces"):format(tot.pieces))
-  T.ok(tot.pw >= FLOOR.pieces_within, ("%d through the pieces and within"):format(tot.pw))
-  T.ok(tot.cok >= FLOOR.corners * tot.c, ("corners within a sample: %d of %d"):format(tot.cok, tot.c))
-  T.ok(tot.rok >= FLOOR.radii * tot.r, ("radii within 2%%: %d of %d"):format(tot.rok, tot.r))
+  if not shapes.thinned then -- the floors hold the whole sweep (the normal build's)
+    T.ok(tot.within >= FLOOR.within, ("%d sections within the Hausdorff floor"):format(tot.within))
+    T.ok(tot.pieces >= FLOOR.pieces, ("%d sections through the pieces"):format(tot.pieces))
+    T.ok(tot.pw >= FLOOR.pieces_within, ("%d through the pieces and within"):format(tot.pw))
+    T.ok(tot.cok >= FLOOR.corners * tot.c, ("corners within a sample: %d of %d"):format(tot.cok, tot.c))
+    T.ok(tot.rok >= FLOOR.radii * tot.r, ("radii within 2%%: %d of %d"):format(tot.rok, tot.r))
+  end
   print(("# tangent joins: %d, %d turn by more than %g degrees as drawn, the most %.3g")
     :format(tot.joins, tot.kinks, KINK, tot.kink))
   T.ok(tot.kinks <= KINKS, ("%d tangent joins turn by more than %g degrees"):format(tot.kinks, KINK))
@@ -140,7 +142,7 @@ local SERIF_FLOOR = { within = 46 }
 T.test("letters with serifs on other seeds: a serif's arc across a corner split into its lines", function()
   local n, within = 0, 0
   for c in shapes.sweep_cases { names = { "E", "H", "L_serif", "T_serif" }, pers = { 4, 5, 6 },
-                                rels = { 1e-3, 3e-3 }, draws = 2,
+                                rels = { 1e-3, 3e-3 }, draws = 2, thin = true,
                                 seed = function(k, per, j, d) return 31337 + 1000 * k + 10 * per + j + 7 * d end } do
     local ok, C = pcall(auto.run, bs.points.new(c.pts))
     T.ok(ok, c.name .. ": " .. tostring(ok or C))
@@ -148,7 +150,7 @@ T.test("letters with serifs on other seeds: a serif's arc across a corner split 
     if ok and shapes.floor_ratio(bs, C, c) <= 1 then within = within + 1 end
   end
   print(("# %d sections, %d within 3 sigma + 1e-3"):format(n, within))
-  T.ok(within >= SERIF_FLOOR.within, ("%d of %d within the floor"):format(within, n))
+  T.ok(shapes.thinned or within >= SERIF_FLOOR.within, ("%d of %d within the floor"):format(within, n))
 end)
 
 -- Every line of bs.geom.segment runs from its start to its end along its reported tangent
