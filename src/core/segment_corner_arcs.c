@@ -22,7 +22,8 @@
 ** lines (without a price, a gear's true arcs were split into chords) */
 #define SPLIT_PRICE 2.0
 
-static double piece_rss(const bsfit_piece *p) { return p->rms * p->rms * (double)p->count; }
+/* the residual sum of squares of a piece's fitted model (segment.c's piece_rss is the cover's, from moments) */
+static double fitted_rss(const bsfit_piece *p) { return p->rms * p->rms * (double)p->count; }
 
 /* the neighbours of piece i, or NULL where an open section has none or it is free */
 static bsfit_piece *neighbour(const seg_section *s, bsfit_piece *p, size_t np, size_t i,
@@ -85,7 +86,7 @@ static void best_split(const seg_section *s, const bsfit_piece *A, const seg_mod
   for (k = s->min_len[LINE]; k + s->min_len[LINE] <= n; k++) {
     if (!line_of(s, first, k, &t.l1, &t.m1) || !line_of(s, first + k, n - k, &t.l2, &t.m2))
       continue;
-    t.rss = piece_rss(&t.l1) + piece_rss(&t.l2) + piece_rss(&t.a) + piece_rss(&t.b);
+    t.rss = fitted_rss(&t.l1) + fitted_rss(&t.l2) + fitted_rss(&t.a) + fitted_rss(&t.b);
     if (t.rss < best->rss && split_meets(s, &t)) *best = t;
   }
 }
@@ -122,7 +123,7 @@ size_t bsfit__split_corner_arcs(const seg_section *s, bsfit_piece *p, seg_model 
     corner_split best;
     double arc_rss;
     if (p[i].kind != ARC || (!A && !B) || A == B || arc_meets(s, p, md, np, i, A, B)) continue;
-    arc_rss = piece_rss(&p[i]) + (A ? piece_rss(A) : 0) + (B ? piece_rss(B) : 0);
+    arc_rss = fitted_rss(&p[i]) + (A ? fitted_rss(A) : 0) + (B ? fitted_rss(B) : 0);
     best.rss = HUGE_VAL;
     for (ka = 0; ka <= (A ? TAKE_BACK : 0); ka++)
       for (kb = 0; kb <= (B ? TAKE_BACK : 0); kb++)

@@ -474,8 +474,7 @@ end
 -- With opts.thin, in the sanitizer build (BSFIT_SANITIZED set by CMake), every
 -- THIN_SANITIZED-th case only (M.thinned is then true): the sanitizers look for memory and
 -- undefined behaviour, which a third of a sweep exercises as well as all of it, at a third
--- of the run; the sweep's counts and their floors are the normal build's (skip them when
--- M.thinned).
+-- of the run; a test holds the third to floors of its own, measured (when M.thinned).
 local THIN_SANITIZED = 3
 M.thinned = os.getenv("BSFIT_SANITIZED") ~= nil
 function M.sweep_cases(opts)

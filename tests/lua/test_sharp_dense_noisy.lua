@@ -27,6 +27,8 @@ local auto = require "bsfit.strategy.auto"
 
 -- the shares reached (docs/auto.md, "Dense noisy sections")
 local FLOOR = { pieces = 128, within = 150, corners = 0.98, radii = 0.85 }
+-- the sanitizer build's third of the sweep (shapes.thinned): its own counts, measured
+if shapes.thinned then FLOOR = { pieces = 43, within = 51, corners = 0.98, radii = 0.85 } end
 
 T.test("dense noisy sections of lines and arcs go through their pieces: corners within a sample, "
        .. "radii within 2%, no loop", function()
@@ -51,12 +53,10 @@ T.test("dense noisy sections of lines and arcs go through their pieces: corners 
   end
   print(("# %d sections: %d through the pieces, %d within 3 sigma + 1e-3; corners %d/%d within a "
          .. "sample, radii %d/%d within 2%%"):format(tot.n, tot.pieces, tot.within, tot.cok, tot.c, tot.rok, tot.r))
-  if not shapes.thinned then -- the floors hold the whole sweep (the normal build's)
-    T.ok(tot.pieces >= FLOOR.pieces, ("%d sections through the pieces"):format(tot.pieces))
-    T.ok(tot.within >= FLOOR.within, ("%d sections within the floor"):format(tot.within))
-    T.ok(tot.cok >= FLOOR.corners * tot.c, ("corners within a sample: %d of %d"):format(tot.cok, tot.c))
-    T.ok(tot.rok >= FLOOR.radii * tot.r, ("radii within 2%%: %d of %d"):format(tot.rok, tot.r))
-  end
+  T.ok(tot.pieces >= FLOOR.pieces, ("%d sections through the pieces"):format(tot.pieces))
+  T.ok(tot.within >= FLOOR.within, ("%d sections within the floor"):format(tot.within))
+  T.ok(tot.cok >= FLOOR.corners * tot.c, ("corners within a sample: %d of %d"):format(tot.cok, tot.c))
+  T.ok(tot.rok >= FLOOR.radii * tot.r, ("radii within 2%%: %d of %d"):format(tot.rok, tot.r))
   -- G1 as drawn at every tangent join between lines and arcs: fillets between two lines are
   -- drawn tangent to both (8 of 134 joins turned by up to 0.44 degrees before)
   print(("# tangent joins: %d, %d turn by more than 0.1 degrees as drawn, the most %.3g")
@@ -228,7 +228,7 @@ T.test("dense noisy sections: every sample in a piece, none of too few; the nois
     if math.abs(s / c.sigma - 1) <= 0.2 then near = near + 1 end
   end
   print(("# segment_sigma within 20%% of the true noise on %d of %d dense sections"):format(near, n))
-  T.ok(shapes.thinned or near >= 0.85 * n, ("segment_sigma within 20%% on %d of %d"):format(near, n))
+  T.ok(near >= (shapes.thinned and 0.80 or 0.85) * n, ("segment_sigma within 20%% on %d of %d"):format(near, n))
 end)
 
 -- A dense section's cover is found on every k-th sample and each boundary then placed among
@@ -259,7 +259,7 @@ T.test("dense noisy sections: each line holds samples that fix its direction", f
       end
     end
   end
-  T.ok(shapes.thinned or lines >= 500, ("%d lines looked at"):format(lines))
+  T.ok(lines >= (shapes.thinned and 200 or 500), ("%d lines looked at"):format(lines))
   T.eq(#bad, 0, table.concat(bad, "; "))
 end)
 
@@ -281,7 +281,7 @@ T.test("dense noisy sections: every line and arc is fitted (a finite max)", func
       end
     end
   end
-  T.ok(shapes.thinned or models >= 500, ("%d lines and arcs looked at"):format(models))
+  T.ok(models >= (shapes.thinned and 200 or 500), ("%d lines and arcs looked at"):format(models))
   T.eq(#bad, 0, table.concat(bad, "; "))
 end)
 
