@@ -123,6 +123,11 @@ BSFIT_API bsfit_err bsfit_segment(const double *pts, size_t m, int dim,
 **                   size, or when no level up to max_sigma explains the section (then
 **                   lines and arcs do not hold it).
 ** @return BSFIT_OK or the codes of bsfit_segment. */
+/* The step between the levels of bsfit_segment_sigma's search: 10^(1/4). A caller that
+** tries the levels after the one it matched (the auto strategy's noisy pieces do) steps by
+** it too (bs.geom.SEGMENT_SIGMA_STEP). */
+#define BSFIT_SEGMENT_SIGMA_STEP 1.7782794100389228
+
 BSFIT_API bsfit_err bsfit_segment_sigma(const double *pts, size_t m, int dim, int closed,
                                         double max_sigma, double *sigma,
                                         const bsfit_allocator *a, bsfit_status *st);

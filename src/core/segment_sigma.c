@@ -68,7 +68,7 @@ static level level_of(const double *pts, size_t m, const bsfit_piece *p, size_t 
 ** their residuals too (tried), its estimates come lower and smooth shapes pass for lines
 ** and arcs (an ellipse at noise 1e-3 of its size as arcs, twice as far off as one smooth
 ** curve). */
-#define LEVEL_STEP 1.7782794100389228 /* 10^(1/4) */
+#define LEVEL_STEP BSFIT_SEGMENT_SIGMA_STEP /* 10^(1/4) */
 #define LEVEL_FINE 1.2115276586285884 /* 10^(1/12) */
 
 /* the search's scratch: the options, room for the pieces and for their samples' distances */

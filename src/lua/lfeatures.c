@@ -17,6 +17,7 @@
 **   bs.geom.segment_sigma(P [, {closed = true, max = 0}]) --> the noise of a section of
 ** lines and arcs, read off their own residuals (levels up to `max`; 0: 5% of the size;
 ** at most 500 evenly spread samples are read).
+**   bs.geom.SEGMENT_SIGMA_STEP: the step between the levels of that search (10^(1/4)).
 */
 #include "laux.h"
 
@@ -309,6 +310,8 @@ void bsfit__lua_lib_features(lua_State *L) {
     lua_setfield(L, -2, "segment");
     lua_pushcfunction(L, features_segment_sigma);
     lua_setfield(L, -2, "segment_sigma");
+    lua_pushnumber(L, BSFIT_SEGMENT_SIGMA_STEP);
+    lua_setfield(L, -2, "SEGMENT_SIGMA_STEP");
     lua_pushcfunction(L, features_self_intersections);
     lua_setfield(L, -2, "self_intersections");
     lua_pushcfunction(L, features_piece_distances);

@@ -95,4 +95,12 @@ T.test("a noisy D's arc keeps its last samples: two pieces, corners within 3 sig
   T.ok(#wrong <= 0.05 * total, ("%d of %d D shapes not two pieces with their corners"):format(#wrong, total))
 end)
 
+-- noisy_pieces tries the levels after the search's by the search's own step: one constant
+-- in C (BSFIT_SEGMENT_SIGMA_STEP), not a copy in Lua
+T.test("the noise search's level step is exposed: 10^(1/4)", function()
+  T.eq(math.type(bs.geom.SEGMENT_SIGMA_STEP), "float")
+  T.ok(math.abs(bs.geom.SEGMENT_SIGMA_STEP - 10 ^ 0.25) <= 1e-15,
+       ("SEGMENT_SIGMA_STEP %.17g"):format(bs.geom.SEGMENT_SIGMA_STEP))
+end)
+
 T.run()

@@ -238,7 +238,7 @@ end
 -- through every test, while they stay under the windows' agreement (AGREE): the first
 -- that passes is taken. The sweep went from 237 to 241 sections within the floor, 780 on
 -- other seeds from 469 to 479, none lost; 600 smooth noisy sections are unchanged.
-local RETRY_LEVELS, LEVEL_STEP = 2, 10 ^ 0.25
+local RETRY_LEVELS, LEVEL_STEP = 2, bs.geom.SEGMENT_SIGMA_STEP
 
 function M.find(P, sigma, closed)
   local s, why, disagreed = noise_of_pieces(P, sigma, closed)
