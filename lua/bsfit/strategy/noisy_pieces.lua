@@ -162,7 +162,8 @@ end
 -- either side, but the bend is drawn tangent to both lines from one sample farther back
 -- and cuts a corner more than that step does (a T with serifs of 6 samples per side at
 -- noise 1e-3: a corner of 92 degrees worth 9.9 sigma^2, its step 3 sigma from it, its bend
--- 4.3). Returns the weak corners left to soften.
+-- 4.3). Returns the weak corners left to soften, and the softened pieces' curve when it
+-- was assembled (curve_within_noise need not make it again).
 local function bends_within(P, pieces, weak, soft, s, closed)
   local steep = {}
   for k, i in ipairs(weak) do
@@ -180,14 +181,16 @@ local function bends_within(P, pieces, weak, soft, s, closed)
   for k, i in ipairs(weak) do
     if not cut[k] then out[#out + 1] = i end
   end
-  return out
+  return out, C
 end
 
+-- the pieces with their weak corners softened but those bends_within keeps, or nil and
+-- why; and their curve when bends_within assembled it
 local function soften(P, pieces, weak, s, closed)
   local soft, why = softened(P, pieces, weak)
   if not soft then return nil, why end
-  local left = bends_within(P, pieces, weak, soft, s, closed)
-  if #left == #weak then return soft end
+  local left, C = bends_within(P, pieces, weak, soft, s, closed)
+  if #left == #weak then return soft, nil, C end
   return softened(P, pieces, left)
 end
 
@@ -195,11 +198,15 @@ end
 -- must stay within the noise of every sample (6 sigma), and pieces that cross (a short
 -- noisy side read as an arc bulging over its neighbour) are no better than the smooth
 -- path, which the loops step can still repair.
-local function curve_within_noise(P, pieces, s, closed)
+-- C: the pieces' curve when it is already made.
+local function curve_within_noise(P, pieces, s, closed, C)
   -- pieces that do not make one curve (bs.curve.join raises where two do not meet) are
   -- refused like any other: the smooth path remains
-  local made, C = pcall(sharp.assemble, P, pieces, { closed = closed, sigma = s })
-  if not made then return nil, "the pieces make no curve: " .. tostring(C) end
+  if not C then
+    local made
+    made, C = pcall(sharp.assemble, P, pieces, { closed = closed, sigma = s })
+    if not made then return nil, "the pieces make no curve: " .. tostring(C) end
+  end
   local dmax = sharp.distances(C, P, pieces):max()
   if dmax > 6 * s then return nil, ("curve %.3g sigma from a sample"):format(dmax / s) end
   if bs.geom.self_intersections(C, math.max(2000, 32 * C:distinct())) > 0 then
@@ -220,11 +227,12 @@ function M.at(P, s, sigma, closed)
   local weak
   weak, why = screen(P, pieces, s, sigma)
   if not weak then return nil, why, found end
-  pieces, why = soften(P, pieces, weak, s, closed)
+  local made
+  pieces, why, made = soften(P, pieces, weak, s, closed)
   if not pieces then return nil, why, found end
   why = sharp.degenerate(pieces) or sharp.far_corner(P, pieces)
   if why then return nil, why, found end
-  local C, r = curve_within_noise(P, pieces, s, closed)
+  local C, r = curve_within_noise(P, pieces, s, closed, made)
   if not C then return nil, r, found end
   found.sigma, found.curve, found.max = s, C, r
   return pieces, nil, found
