@@ -22,9 +22,6 @@
 ** lines (without a price, a gear's true arcs were split into chords) */
 #define SPLIT_PRICE 2.0
 
-/* the residual sum of squares of a piece's fitted model (segment.c's piece_rss is the cover's, from moments) */
-static double fitted_rss(const bsfit_piece *p) { return p->rms * p->rms * (double)p->count; }
-
 /* the neighbours of piece i, or NULL where an open section has none or it is free */
 static bsfit_piece *neighbour(const seg_section *s, bsfit_piece *p, size_t np, size_t i,
                               int after) {

@@ -80,6 +80,10 @@ static inline double model_dist(const seg_model *md, const double *x) {
   return md->kind == LINE ? bsfit__line_dist(&md->line, x) : bsfit__circle_dist(&md->circle, x);
 }
 
+/* the residual sum of squares of a piece's fitted model (set by bsfit__segment_refit;
+** segment.c's piece_rss is the cover's, from moments) */
+static inline double fitted_rss(const bsfit_piece *p) { return p->rms * p->rms * (double)p->count; }
+
 /* segment_evidence.c: how much worse one smooth curve explains the samples of A and B
 ** next to their corner than their two models, in units of sigma^2 */
 double bsfit__join_evidence(const seg_section *s, const bsfit_piece *A, const seg_model *ma,

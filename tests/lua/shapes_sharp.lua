@@ -440,7 +440,8 @@ end
 -- place a corner may be (corner_places), radii = arcs, radii_ok = how many within 2% of the
 -- radius of the true arc whose centre is nearest}.
 function M.features_found(o, pts, pieces)
-  local r, hs = { corners = 0, corners_ok = 0, radii = 0, radii_ok = 0 }, M.spacing(pts)
+  local r, hs = { corners = 0, corners_ok = 0, radii = 0, radii_ok = 0, radii_fixed = 0,
+                  radii_fixed_ok = 0, radii_uncertain_ok = 0 }, M.spacing(pts)
   local places = M.corner_places(o, hs)
   for _, p in ipairs(pieces or {}) do
     if p.join == "corner" then
@@ -451,8 +452,17 @@ function M.features_found(o, pts, pieces)
     end
     if p.kind == "arc" then
       local tr = M.true_arc(o, p.centre)
+      local err, lim = tr and math.abs(p.radius - tr.r) or math.huge, tr and 0.02 * tr.r or 0
       r.radii = r.radii + 1
-      if tr and math.abs(p.radius - tr.r) <= 0.02 * tr.r then r.radii_ok = r.radii_ok + 1 end
+      if err <= lim then r.radii_ok = r.radii_ok + 1 end
+      -- where the samples fix the radius to 1% (radius_se), within 2%; elsewhere within
+      -- what radius_se says (3 of it)
+      if (p.radius_se or math.huge) <= 0.01 * p.radius then
+        r.radii_fixed = r.radii_fixed + 1
+        if err <= lim then r.radii_fixed_ok = r.radii_fixed_ok + 1 end
+      elseif err <= math.max(lim, 3 * p.radius_se) then
+        r.radii_uncertain_ok = r.radii_uncertain_ok + 1
+      end
     end
   end
   return r

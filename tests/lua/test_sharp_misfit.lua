@@ -22,7 +22,7 @@ end
 T.test("a smooth curve missing its samples by 6 sigma gives way to the lines and arcs", function()
   local n, swaps, within, smooth_within = 0, 0, 0, 0
   for c in shapes.sweep_cases { pers = { 8, 10 }, rels = { 1e-4, 3e-4 }, unevens = { true },
-      draws = 2,
+      draws = 4,
       seed = function(k, per, j, d) return 77000 + 1000 * k + 10 * per + j + 100000 * d end } do
     local P = bs.points.new(c.pts)
     local C, rep = auto.run(P)

@@ -85,14 +85,21 @@ end
 -- bend; 234, 277, 226 before an arc that meets neither way round a corner was tried as
 -- its two lines, segment_corner_arcs.c; 237, 279, 230 before pieces refused at the noise
 -- search's level were tried at the next two levels, noisy_pieces.find)
-local FLOOR = { within = 241, pieces = 288, pieces_within = 234, corners = 0.99, radii = 0.8 }
+-- (241, 288, 234 and radii 147 of 179 within 2% before a fillet was made where its samples
+-- fix its radius to less than 1%, its samples taken from the lines first, segment_fillets.c)
+-- Radii: within 2% where the samples fix them to 1% (radius_se), within 3 radius_se (or
+-- 2%) elsewhere; of all, the share within 2%.
+local FLOOR = { within = 251, pieces = 294, pieces_within = 245, corners = 0.99, radii = 0.78,
+                radii_fixed = 0.95, radii_uncertain = 0.85 }
 -- the sanitizer build's third of the sweep (shapes.thinned): its own counts, measured
 if shapes.thinned then
-  FLOOR = { within = 65, pieces = 83, pieces_within = 62, corners = 0.99, radii = 0.75 }
+  FLOOR = { within = 68, pieces = 87, pieces_within = 66, corners = 0.99, radii = 0.7,
+            radii_fixed = 0.95, radii_uncertain = 0.8 }
 end
 
 T.test("sparse and noisy sections: no error, closed, no loop; the issue's numbers measured on all", function()
   local rows, tot = {}, { n = 0, pieces = 0, within = 0, pw = 0, c = 0, cok = 0, r = 0, rok = 0,
+                         rf = 0, rfok = 0, ruok = 0,
                          joins = 0, kinks = 0, kink = 0 }
   for c in shapes.sweep_cases { thin = true } do
     local r = run_case(c)
@@ -107,6 +114,8 @@ T.test("sparse and noisy sections: no error, closed, no loop; the issue's number
       row.worst = math.max(row.worst, r.ratio)
       tot.c, tot.cok = tot.c + r.corners, tot.cok + r.corners_ok
       tot.r, tot.rok = tot.r + r.radii, tot.rok + r.radii_ok
+      tot.rf, tot.rfok = tot.rf + r.radii_fixed, tot.rfok + r.radii_fixed_ok
+      tot.ruok = tot.ruok + r.radii_uncertain_ok
       tot.joins, tot.kinks = tot.joins + r.joins, tot.kinks + r.kinks
       tot.kink = math.max(tot.kink, r.kink)
     end
@@ -126,7 +135,13 @@ T.test("sparse and noisy sections: no error, closed, no loop; the issue's number
   T.ok(tot.pieces >= FLOOR.pieces, ("%d sections through the pieces"):format(tot.pieces))
   T.ok(tot.pw >= FLOOR.pieces_within, ("%d through the pieces and within"):format(tot.pw))
   T.ok(tot.cok >= FLOOR.corners * tot.c, ("corners within a sample: %d of %d"):format(tot.cok, tot.c))
+  print(("# radii the samples fix to 1%%: %d of %d within 2%%; the others: %d of %d within 2%% or 3 radius_se")
+    :format(tot.rfok, tot.rf, tot.ruok, tot.r - tot.rf))
   T.ok(tot.rok >= FLOOR.radii * tot.r, ("radii within 2%%: %d of %d"):format(tot.rok, tot.r))
+  T.ok(tot.rfok >= FLOOR.radii_fixed * tot.rf,
+       ("radii the samples fix to 1%%, within 2%%: %d of %d"):format(tot.rfok, tot.rf))
+  T.ok(tot.ruok >= FLOOR.radii_uncertain * (tot.r - tot.rf),
+       ("other radii within 3 radius_se: %d of %d"):format(tot.ruok, tot.r - tot.rf))
   print(("# tangent joins: %d, %d turn by more than %g degrees as drawn, the most %.3g")
     :format(tot.joins, tot.kinks, KINK, tot.kink))
   T.ok(tot.kinks <= KINKS, ("%d tangent joins turn by more than %g degrees"):format(tot.kinks, KINK))
@@ -153,6 +168,27 @@ T.test("letters with serifs on other seeds: a serif's arc across a corner split 
   end
   print(("# %d sections, %d within 3 sigma + 1e-3"):format(n, within))
   T.ok(within >= SERIF_FLOOR.within, ("%d of %d within the floor"):format(within, n))
+end)
+
+-- A fillet made from a short line or an arc between two lines first takes the lines'
+-- samples past its tangent points (segment_fillets.c, settle_fillet); where the lines
+-- refitted without them leave their tolerance or explain less, the fillet is tried as the
+-- lines are. Without that second try a slot of 4 uneven samples per side at noise 1e-4
+-- lost an end arc (10 times the floor off, 0.51 before). Slots, keyholes and D's on seeds
+-- of their own: 106 of 144 within the floor without it.
+local ENDS_FLOOR = { within = shapes.thinned and 37 or 109 } -- of 144, the sanitizers' 48
+T.test("arcs at the ends of slots, keyholes and D's on seeds of their own", function()
+  local n, within = 0, 0
+  for c in shapes.sweep_cases { names = { "slot", "keyhole", "D" }, pers = { 4, 5, 6 },
+                                rels = { 1e-4, 1e-3 }, unevens = { true }, draws = 8, thin = true,
+                                seed = function(k, per, j, d) return 5000 + 7919 * k + 97 * per + 13 * j + d end } do
+    local ok, C = pcall(auto.run, bs.points.new(c.pts))
+    T.ok(ok, c.name .. ": " .. tostring(ok or C))
+    n = n + 1
+    if ok and shapes.floor_ratio(bs, C, c) <= 1 then within = within + 1 end
+  end
+  print(("# %d sections, %d within 3 sigma + 1e-3"):format(n, within))
+  T.ok(within >= ENDS_FLOOR.within, ("%d of %d within the floor"):format(within, n))
 end)
 
 -- Every line of bs.geom.segment runs from its start to its end along its reported tangent
@@ -384,7 +420,7 @@ T.test("the result does not depend on which sample a closed section starts at", 
         for seed = 1, 2 do
           local pts = shapes.sample(o, per, { sigma = rel * size, seed = seed })
           local what = ("%s %d per side noise %g seed %d"):format(name, per, rel, seed)
-          local first_radii, first_h, first_path
+          local first_radii, first_C, first_path
           for shift = 0, #pts - 1, math.max(1, #pts // 5) do
             local q = {}
             for i = 1, #pts do q[i] = pts[(i - 1 + shift) % #pts + 1] end
@@ -394,10 +430,9 @@ T.test("the result does not depend on which sample a closed section starts at", 
               if p.kind == "arc" then radii[#radii + 1] = p.radius end
             end
             table.sort(radii)
-            local h = shapes.hausdorff(bs, C, o, 1000, 30)
             local path = rep.pieces and "pieces" or "smooth"
             if not first_radii then
-              first_radii, first_h, first_path = radii, h, path
+              first_radii, first_C, first_path = radii, C, path
             else
               T.eq(path, first_path, what .. ", from sample " .. shift + 1 .. ": path")
               T.eq(#radii, #first_radii, what .. ", from sample " .. shift + 1 .. ": arcs")
@@ -408,9 +443,14 @@ T.test("the result does not depend on which sample a closed section starts at", 
               end
               -- (the smooth path's periodic fit starts its parameter at the first sample:
               -- not the same curve to rounding, and not what this test is about; on the
-              -- pieces, refits taken in the pieces' order can differ by 1e-6 of the size)
-              T.ok(path == "smooth" or math.abs(h - first_h) <= 1e-4 * size,
-                   ("%s, from sample %d: %g off, %g from sample 1"):format(what, shift + 1, h, first_h))
+              -- pieces, refits taken in the pieces' order can differ by 1e-6 of the size).
+              -- The curves are compared, not their distances to the outline measured on
+              -- 1000 samples each: those samples fall elsewhere on a curve whose parameter
+              -- starts elsewhere, and read a filleted hexagon's two equal curves (2e-12
+              -- apart) as 0.0340 and 0.0324 off.
+              local h = path == "smooth" and 0 or select(2, first_C:closest_many(C:sample(2000))):max()
+              T.ok(h <= 1e-4 * size,
+                   ("%s, from sample %d: %g from the curve from sample 1"):format(what, shift + 1, h))
             end
           end
         end
