@@ -156,18 +156,25 @@ end)
 -- these 96 sections were within the floor before the split, 44 with it and no such kept
 -- corner, 45 before pieces refused at the noise search's level were tried at the next two.
 local SERIF_FLOOR = { within = shapes.thinned and 16 or 46 } -- 16 of the sanitizers' 32
-T.test("letters with serifs on other seeds: a serif's arc across a corner split into its lines", function()
+-- the sections of shapes.sweep_cases(opts) run through auto: no error, and at least
+-- `floor` within the Hausdorff floor
+local function within_at_least(opts, floor)
   local n, within = 0, 0
-  for c in shapes.sweep_cases { names = { "E", "H", "L_serif", "T_serif" }, pers = { 4, 5, 6 },
-                                rels = { 1e-3, 3e-3 }, draws = 2, thin = true,
-                                seed = function(k, per, j, d) return 31337 + 1000 * k + 10 * per + j + 7 * d end } do
+  for c in shapes.sweep_cases(opts) do
     local ok, C = pcall(auto.run, bs.points.new(c.pts))
     T.ok(ok, c.name .. ": " .. tostring(ok or C))
     n = n + 1
     if ok and shapes.floor_ratio(bs, C, c) <= 1 then within = within + 1 end
   end
   print(("# %d sections, %d within 3 sigma + 1e-3"):format(n, within))
-  T.ok(within >= SERIF_FLOOR.within, ("%d of %d within the floor"):format(within, n))
+  T.ok(within >= floor, ("%d of %d within the floor"):format(within, n))
+end
+
+T.test("letters with serifs on other seeds: a serif's arc across a corner split into its lines", function()
+  within_at_least({ names = { "E", "H", "L_serif", "T_serif" }, pers = { 4, 5, 6 },
+                    rels = { 1e-3, 3e-3 }, draws = 2, thin = true,
+                    seed = function(k, per, j, d) return 31337 + 1000 * k + 10 * per + j + 7 * d end },
+                  SERIF_FLOOR.within)
 end)
 
 -- A fillet made from a short line or an arc between two lines first takes the lines'
@@ -178,17 +185,10 @@ end)
 -- of their own: 106 of 144 within the floor without it.
 local ENDS_FLOOR = { within = shapes.thinned and 37 or 109 } -- of 144, the sanitizers' 48
 T.test("arcs at the ends of slots, keyholes and D's on seeds of their own", function()
-  local n, within = 0, 0
-  for c in shapes.sweep_cases { names = { "slot", "keyhole", "D" }, pers = { 4, 5, 6 },
-                                rels = { 1e-4, 1e-3 }, unevens = { true }, draws = 8, thin = true,
-                                seed = function(k, per, j, d) return 5000 + 7919 * k + 97 * per + 13 * j + d end } do
-    local ok, C = pcall(auto.run, bs.points.new(c.pts))
-    T.ok(ok, c.name .. ": " .. tostring(ok or C))
-    n = n + 1
-    if ok and shapes.floor_ratio(bs, C, c) <= 1 then within = within + 1 end
-  end
-  print(("# %d sections, %d within 3 sigma + 1e-3"):format(n, within))
-  T.ok(within >= ENDS_FLOOR.within, ("%d of %d within the floor"):format(within, n))
+  within_at_least({ names = { "slot", "keyhole", "D" }, pers = { 4, 5, 6 }, rels = { 1e-4, 1e-3 },
+                    unevens = { true }, draws = 8, thin = true,
+                    seed = function(k, per, j, d) return 5000 + 7919 * k + 97 * per + 13 * j + d end },
+                  ENDS_FLOOR.within)
 end)
 
 -- Every line of bs.geom.segment runs from its start to its end along its reported tangent
