@@ -44,8 +44,10 @@ typedef struct bsfit_piece {
                                (tol/tol_sigma)^2, i.e. sigma^2 on noisy data */
   double radius_se;       /**< arcs: the standard error of the radius at the noise sigma, from
                                the spread of the arc's samples round its centre (the free
-                               circle's Gauss-Newton information); 0 on exact data and for
-                               other pieces; HUGE_VAL when the samples cannot fix it */
+                               circle's Gauss-Newton information), or for a fillet (tangent
+                               to a line at both ends) from its samples and its lines'
+                               errors (docs/auto.md); 0 on exact data and for other pieces;
+                               HUGE_VAL when the samples cannot fix it */
 } bsfit_piece;
 
 /** Options of bsfit_segment. Zero-initialise, then set what you need. */

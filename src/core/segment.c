@@ -1189,8 +1189,8 @@ static size_t finish_pieces(const seg_section *s, bsfit_piece *p, seg_model *md,
 /* The standard error of an arc's radius at the noise (s->unit), from its samples round its
 ** centre: the radius's entry of the inverse of J^T J, J's rows (u_x, u_y, 1) for the unit
 ** vector u from the centre to each sample (the derivatives of the distance |x - c| - r by
-** the centre and the radius). A fillet refitted with its lines held is known better than
-** this; it is what the arc's own samples say. */
+** the centre and the radius): what a free arc's own samples say (a fillet's is
+** bsfit__fillet_radius_se, arc_radius_se). */
 static double radius_se(const seg_section *s, const bsfit_piece *p) {
   double M[6] = {0, 0, 0, 0, 0, 0}; /* xx xy x1 yy y1 11 */
   double det, cof;
@@ -1208,6 +1208,27 @@ static double radius_se(const seg_section *s, const bsfit_piece *p) {
         M[2] * (M[1] * M[4] - M[3] * M[2]);
   if (!(det > 1e-12 * M[5] * M[5] * M[5]) || !(cof > 0)) return HUGE_VAL;
   return s->unit * sqrt(cof / det);
+}
+
+/* Is arc i a fillet: between two lines, its circle tangent to both (refitted so,
+** segment_fillets.c)? */
+static int is_fillet(const seg_section *s, const bsfit_piece *p, const seg_model *md, size_t np,
+                     size_t i) {
+  size_t ia = (i + np - 1) % np, ib = (i + 1) % np;
+  if (np < 3 || p[ia].kind != LINE || p[ib].kind != LINE) return 0;
+  if (!s->closed && (i == 0 || i + 1 == np)) return 0;
+  return fabs(bsfit__line_dist(&md[ia].line, p[i].centre) - p[i].radius) <= 1e-9 * s->size &&
+         fabs(bsfit__line_dist(&md[ib].line, p[i].centre) - p[i].radius) <= 1e-9 * s->size;
+}
+
+/* the standard error of arc i's radius: a fillet's with its lines' errors, else its own
+** samples' (radius_se) */
+static double arc_radius_se(const seg_section *s, const bsfit_piece *p, const seg_model *md,
+                            size_t np, size_t i) {
+  if (s->noisy && is_fillet(s, p, md, np, i))
+    return bsfit__fillet_radius_se(s, &p[(i + np - 1) % np], &md[(i + np - 1) % np], &p[i],
+                                   &p[(i + 1) % np], &md[(i + 1) % np]);
+  return radius_se(s, &p[i]);
 }
 
 static void count_gaps(seg_section *s) {
@@ -1296,7 +1317,7 @@ bsfit_err bsfit_segment(const double *pts, size_t m, int dim, const bsfit_segmen
     np = cover(&s, len, prim, fr, heaps, buf);
   }
   np = finish_pieces(&s, buf, md, np);
-  for (i = 0; i < np; i++) buf[i].radius_se = buf[i].kind == ARC ? radius_se(&s, &buf[i]) : 0.0;
+  for (i = 0; i < np; i++) buf[i].radius_se = buf[i].kind == ARC ? arc_radius_se(&s, buf, md, np, i) : 0.0;
   for (i = 0; i < np && i < cap; i++) pieces[i] = buf[i];
   *count = np;
   e = bsfit__ok(st);

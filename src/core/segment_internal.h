@@ -113,6 +113,12 @@ void bsfit__refit_fillets(const seg_section *s, bsfit_piece *p, seg_model *md, s
 ** joins then find it tangent) */
 void bsfit__cover_fillets(const seg_section *s, bsfit_piece *p, seg_model *md, size_t np);
 
+/* segment_fillets.c: the standard error of fillet F's radius (its circle tangent to lines
+** A and B, its radius fitted with them held), the lines' own errors included; HUGE_VAL
+** when it cannot be had, 0 on exact data */
+double bsfit__fillet_radius_se(const seg_section *s, const bsfit_piece *A, const seg_model *ma,
+                               const bsfit_piece *F, const bsfit_piece *B, const seg_model *mb);
+
 /* segment.c: where A and B (B after A) meet: 0 (nowhere between them), BSFIT_JOIN_CORNER or
 ** BSFIT_JOIN_TANGENT, the point written to x */
 int bsfit__segment_meet(const seg_section *s, const bsfit_piece *A, const seg_model *ma,
