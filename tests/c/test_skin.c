@@ -129,7 +129,7 @@ static void test_interpolates_sections(void **state) {
   test_rng r = {0x5eed5eedULL};
   int seed;
   (void)state;
-  for (seed = 0; seed < 60; seed++) {
+  for (seed = 0; seed < test_cases(60); seed++) {
     size_t K = 2 + (size_t)(rng_uniform(&r) * 7), k;
     bsfit_curve C[KMAX];
     const bsfit_curve *ptr[KMAX];
@@ -177,7 +177,7 @@ static void test_ruled(void **state) {
   test_rng r = {0x12345ULL};
   int seed, i;
   (void)state;
-  for (seed = 0; seed < 20; seed++) {
+  for (seed = 0; seed < test_cases(20); seed++) {
     bsfit_curve C[2];
     const bsfit_curve *ptr[2] = {&C[0], &C[1]};
     double v[2], sh[2], size;
@@ -486,12 +486,13 @@ static double hausdorff(const closed *c1, const closed *c2, test_rng *r) {
 ** through it (Hausdorff distance, measured densely both ways), the report's max_deviation
 ** no less than that; with a tol no cubic count reaches, the exact surface (through the
 ** sections at the report's parameters). */
+#define LIGHT_THINNED 2
 static void test_tolerance(void **state) {
   test_rng r = {0x70170170ULL};
   int seed, light = 0;
   double deficit = 0;
   (void)state;
-  for (seed = 0; seed < 40; seed++) {
+  for (seed = 0; seed < test_cases(40); seed++) {
     size_t K = 2 + (size_t)(rng_uniform(&r) * 7), k, i;
     bsfit_curve C[KMAX];
     const bsfit_curve *ptr[KMAX];
@@ -534,11 +535,12 @@ static void test_tolerance(void **state) {
     bsfit_surface_free(&S);
     for (k = 0; k < K; k++) bsfit_curve_free(&C[k]);
   }
-  print_message("tolerance: %d of 40 stacks light; reported deviation above the measured one by "
-                "at most %.3g of tol\n", light, deficit);
+  print_message("tolerance: %d of %d stacks light; reported deviation above the measured one by "
+                "at most %.3g of tol\n", light, test_cases(40), deficit);
   /* random sections of degree 1 and 2 have corners that uniform cubics round off beyond
-  ** tol up to the count cap: those stacks take the exact branch */
-  assert_true(light >= 5);
+  ** tol up to the count cap: those stacks take the exact branch (a third of the stacks
+  ** under the sanitizers, test_cases: LIGHT_THINNED of them light, measured) */
+  assert_true(light >= (getenv("BSFIT_SANITIZED") ? LIGHT_THINNED : 5));
 }
 
 /* }==================================================================== */

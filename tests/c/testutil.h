@@ -16,6 +16,11 @@
 #define EPS_KNOT 1e-12  /* knot values */
 #define EPS_FD 1e-6     /* finite differences (relative) */
 
+/* How many of n random cases to run: all, or a third under the sanitizers (BSFIT_SANITIZED,
+** set by CMake on the sanitizer build's tests), whose arithmetic is the normal build's and
+** which run them several times slower. Floors that count cases are measured for both. */
+static inline int test_cases(int n) { return getenv("BSFIT_SANITIZED") ? (n + 2) / 3 : n; }
+
 /* xorshift64*: deterministic, so a failing case can be reproduced */
 typedef struct test_rng {
   uint64_t s;
