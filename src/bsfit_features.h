@@ -103,6 +103,11 @@ BSFIT_API bsfit_err bsfit_segment(const double *pts, size_t m, int dim,
                                   size_t cap, size_t *count, const bsfit_allocator *a,
                                   bsfit_status *st);
 
+/* The step between the levels of bsfit_segment_sigma's search: 10^(1/4). A caller that
+** tries the levels after the one it matched (the auto strategy's noisy pieces do) steps by
+** it too (bs.geom.SEGMENT_SIGMA_STEP). */
+#define BSFIT_SEGMENT_SIGMA_STEP 1.7782794100389228
+
 /** Estimates the noise of a section of lines and arcs from the models themselves.
 ** Segmented at a level below its noise, a section's runs stop short, and the pooled
 ** residual of its lines and arcs (sum of squares over degrees of freedom) exceeds the
@@ -125,11 +130,6 @@ BSFIT_API bsfit_err bsfit_segment(const double *pts, size_t m, int dim,
 **                   size, or when no level up to max_sigma explains the section (then
 **                   lines and arcs do not hold it).
 ** @return BSFIT_OK or the codes of bsfit_segment. */
-/* The step between the levels of bsfit_segment_sigma's search: 10^(1/4). A caller that
-** tries the levels after the one it matched (the auto strategy's noisy pieces do) steps by
-** it too (bs.geom.SEGMENT_SIGMA_STEP). */
-#define BSFIT_SEGMENT_SIGMA_STEP 1.7782794100389228
-
 BSFIT_API bsfit_err bsfit_segment_sigma(const double *pts, size_t m, int dim, int closed,
                                         double max_sigma, double *sigma,
                                         const bsfit_allocator *a, bsfit_status *st);

@@ -116,6 +116,18 @@ static size_t claim_for_fillet(const seg_section *s, bsfit_piece *A, const seg_m
   return moved;
 }
 
+/* claim_for_fillet, and the lines refitted without the samples they gave; returns how many
+** moved */
+static size_t claim_and_refit(const seg_section *s, bsfit_piece *A, seg_model *ma, bsfit_piece *F,
+                              bsfit_piece *B, seg_model *mb) {
+  size_t moved = claim_for_fillet(s, A, ma, F, B, mb);
+  if (moved) {
+    bsfit__segment_refit(s, A, ma);
+    bsfit__segment_refit(s, B, mb);
+  }
+  return moved;
+}
+
 /* the cross product of two lines' directions: the sign of the turn from a to b */
 static double turn_sign(const seg_model *a, const seg_model *b) {
   return a->line.d[0] * b->line.d[1] - a->line.d[1] * b->line.d[0];
@@ -130,9 +142,7 @@ static double turn_sign(const seg_model *a, const seg_model *b) {
 static int settle_fillet(const seg_section *s, bsfit_piece *A, seg_model *ma, bsfit_piece *F,
                          seg_model *mf, bsfit_piece *B, seg_model *mb) {
   double V[2], u[2], k, r, rss, info;
-  if (!claim_for_fillet(s, A, ma, F, B, mb)) return 1;
-  bsfit__segment_refit(s, A, ma);
-  bsfit__segment_refit(s, B, mb);
+  if (!claim_and_refit(s, A, ma, F, B, mb)) return 1;
   if (!(A->max <= s->tol) || !(B->max <= s->tol) || !fillet_frame(ma, mb, V, u, &k) ||
       !(k - 1 > 1e-6))
     return 0;
@@ -164,7 +174,7 @@ static double try_rss(const fillet_try *t) {
 ** trusted. */
 static int to_fillet(const seg_section *s, bsfit_piece *A, seg_model *ma, bsfit_piece *X,
                      seg_model *mx, bsfit_piece *B, seg_model *mb, double r0, double price) {
-  double V[2], u[2], k, r, rss, info = 0, turn = turn_sign(ma, mb);
+  double V[2], u[2], k, r, rss, info, turn = turn_sign(ma, mb);
   double most = fitted_rss(A) + fitted_rss(X) + fitted_rss(B) + price * s->unit * s->unit;
   fillet_try t, settled;
   if (!fillet_frame(ma, mb, V, u, &k) || !(k - 1 > 1e-6)) return 0;
@@ -235,11 +245,8 @@ void bsfit__refit_fillets(const seg_section *s, bsfit_piece *p, seg_model *md, s
       if (p[i].join != BSFIT_JOIN_TANGENT || p[ib].join != BSFIT_JOIN_TANGENT) continue;
       refit_fillet(s, &p[ia], &md[ia], &p[i], &md[i], &p[ib], &md[ib]);
       /* the second pass places every tangent point on the lines as they end up */
-      if (pass == 0 && s->noisy && claim_for_fillet(s, &p[ia], &md[ia], &p[i], &p[ib], &md[ib])) {
-        bsfit__segment_refit(s, &p[ia], &md[ia]);
-        bsfit__segment_refit(s, &p[ib], &md[ib]);
+      if (pass == 0 && s->noisy && claim_and_refit(s, &p[ia], &md[ia], &p[i], &p[ib], &md[ib]))
         refit_fillet(s, &p[ia], &md[ia], &p[i], &md[i], &p[ib], &md[ib]);
-      }
     }
 }
 

@@ -540,7 +540,7 @@ static void test_tolerance(void **state) {
   /* random sections of degree 1 and 2 have corners that uniform cubics round off beyond
   ** tol up to the count cap: those stacks take the exact branch (a third of the stacks
   ** under the sanitizers, test_cases: LIGHT_THINNED of them light, measured) */
-  assert_true(light >= (getenv("BSFIT_SANITIZED") ? LIGHT_THINNED : 5));
+  assert_true(light >= (test_thinned() ? LIGHT_THINNED : 5));
 }
 
 /* }==================================================================== */

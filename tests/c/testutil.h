@@ -19,7 +19,8 @@
 /* How many of n random cases to run: all, or a third under the sanitizers (BSFIT_SANITIZED,
 ** set by CMake on the sanitizer build's tests), whose arithmetic is the normal build's and
 ** which run them several times slower. Floors that count cases are measured for both. */
-static inline int test_cases(int n) { return getenv("BSFIT_SANITIZED") ? (n + 2) / 3 : n; }
+static inline int test_thinned(void) { return getenv("BSFIT_SANITIZED") != NULL; }
+static inline int test_cases(int n) { return test_thinned() ? (n + 2) / 3 : n; }
 
 /* xorshift64*: deterministic, so a failing case can be reproduced */
 typedef struct test_rng {

@@ -438,7 +438,9 @@ end
 -- The issue's checks of the pieces of outline o read off samples pts (rep.pieces, or nil
 -- for the smooth path): {corners = n, corners_ok = how many within the largest step of a
 -- place a corner may be (corner_places), radii = arcs, radii_ok = how many within 2% of the
--- radius of the true arc whose centre is nearest}.
+-- radius of the true arc whose centre is nearest, radii_fixed = arcs whose radius_se is at
+-- most 1% of the radius, radii_fixed_ok = of those within 2%, radii_uncertain_ok = of the
+-- others within 2% or 3 radius_se}.
 function M.features_found(o, pts, pieces)
   local r, hs = { corners = 0, corners_ok = 0, radii = 0, radii_ok = 0, radii_fixed = 0,
                   radii_fixed_ok = 0, radii_uncertain_ok = 0 }, M.spacing(pts)
@@ -486,7 +488,7 @@ end
 -- undefined behaviour, which a third of a sweep exercises as well as all of it, at a third
 -- of the run; a test holds the third to floors of its own, measured (when M.thinned).
 local THIN_SANITIZED = 3
-M.thinned = os.getenv("BSFIT_SANITIZED") ~= nil
+M.thinned = require("tap").thinned
 function M.sweep_cases(opts)
   opts = opts or {}
   local every, count = (opts.thin and M.thinned) and THIN_SANITIZED or 1, 0

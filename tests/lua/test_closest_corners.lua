@@ -48,7 +48,7 @@ end
 
 -- under the sanitizers (BSFIT_SANITIZED, set by CMake) a third of the trials: the dense
 -- measure runs in Lua, which they slow fivefold; the normal build runs them all
-local TRIALS = os.getenv("BSFIT_SANITIZED") and 100 or 300
+local TRIALS = T.thinned and 100 or 300
 
 T.test("closest points near corners are the true ones (independent dense measure)", function()
   local points, off, worst = 0, 0, 0

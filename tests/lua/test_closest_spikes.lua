@@ -121,7 +121,7 @@ end
 
 -- under the sanitizers (BSFIT_SANITIZED, set by CMake) a third of the trials: the dense
 -- measure runs in Lua, which they slow fivefold; the normal build runs them all
-local TRIALS = os.getenv("BSFIT_SANITIZED") and 20 or 60
+local TRIALS = T.thinned and 20 or 60
 
 T.test("closest points near spikes, hairpins and slivers are the global ones", function()
   local stats, worst_ratio = {}, 0

@@ -53,9 +53,8 @@ end
 -- under the sanitizers (BSFIT_SANITIZED, set by CMake) one noise level and one seed of each
 -- case: the independent measures below run in Lua, which they slow threefold; the normal
 -- build runs them all
-local SANITIZED = os.getenv("BSFIT_SANITIZED") ~= nil
-local NOISES = SANITIZED and { 0.003 } or { 0.001, 0.003, 0.01 }
-local SEEDS = SANITIZED and 1 or 3
+local NOISES = T.thinned and { 0.003 } or { 0.001, 0.003, 0.01 }
+local SEEDS = T.thinned and 1 or 3
 
 local SHAPES = {
   { "ellipse", synth.sample_smooth(synth.smooth.ellipse, 400, false) },
