@@ -37,8 +37,9 @@
 -- then m/3, at most 4000); optional: point_weights, tol.
 -- rep: count, sigma, corners (1-based indices), tries ({count, rms, max} per fit of the
 -- search), rms, max, max_index, residuals (distances), times per step, closed,
--- closed_ambiguous, crossings, pieces (when segmented), pieces_rejected (why a noisy section
--- kept the smooth path), warnings.
+-- closed_ambiguous, crossings, pieces (when segmented) and pieces_sigma (the noise level they
+-- were found at, 0 on exact data), pieces_rejected (why a noisy section kept the smooth
+-- path), warnings.
 
 local bs = require "bsfit"
 local common = require "bsfit.strategy.common"
@@ -746,21 +747,37 @@ end
 -- the noise from 20 samples disagree by 25% by chance: a D of 10 uneven samples per side
 -- at noise 1e-4 of its size read 1.29 times the windows' noise off its line and arc, and
 -- its smooth curve, without the corners between samples, bulged 0.22 from a sample
--- (100 sigma) and 1.15 from the true outline. Returns the pieces' curve, or nil.
+-- (100 sigma) and 1.15 from the true outline. Where the two agreed but a test of the
+-- screen refused the pieces (a bridge, a weak corner of two lines of 3 samples), the
+-- smooth curve is judged in the pieces' noise s instead (on a sparse section the windows
+-- read the bends between samples as noise, 5 to 20 times too high) and the pieces at s are
+-- tried leniently (noisy.at): a T of 3 uneven samples per side at noise 1e-3 missed a
+-- sample by 28 s and its outline by 17 times the floor, its pieces 1.2. Returns the
+-- pieces' curve, or nil.
 local MISFIT = 6
-local function pieces_for_misfit(P, ctx)
-  -- set by the segment step's untrusted path only (not when it was replaced, nor on the
-  -- trusted points' path)
-  local s, d = ctx.sharp_disagreed, ctx.distances
-  if not (s and s > 0) or not pieces_allowed(ctx) or ctx.distances_of ~= ctx.fit then
+
+-- The noise to try the pieces at, the unit to judge the smooth curve in, and whether to
+-- try them leniently; nil when no swap is asked. The sharp_* fields are set by the segment
+-- step's untrusted path only (not when it was replaced, nor on the trusted points' path).
+local function misfit_level(ctx)
+  local s = ctx.sharp_disagreed
+  if s and s > 0 then return s, ctx.sigma, false end
+  local cand = ctx.sharp_candidate
+  if common.trusted(ctx) or not (cand and ctx.sharp_rejected and cand.sigma > 0) then
     return nil
   end
-  local worst = d:max()
-  if not (worst > MISFIT * ctx.sigma) then return nil end
-  local pieces, _, found = noisy.at(P, s, ctx.sigma, closed(ctx))
+  return cand.sigma, cand.sigma, true
+end
+
+local function pieces_for_misfit(P, ctx)
+  if not pieces_allowed(ctx) or ctx.distances_of ~= ctx.fit then return nil end
+  local s, unit, lenient = misfit_level(ctx)
+  local worst = ctx.distances:max()
+  if not (s and worst > MISFIT * unit) then return nil end
+  local pieces, _, found = noisy.at(P, s, ctx.sigma, closed(ctx), lenient)
   if not pieces or not (found.max < worst) then return nil end
   warn(ctx, ("the smooth curve missed a sample by %.3g sigma: fitted the lines and arcs at "
-    .. "noise %.3g (%s)"):format(worst / ctx.sigma, s, ctx.sharp_rejected))
+    .. "noise %.3g (%s)"):format(worst / unit, s, ctx.sharp_rejected))
   ctx.segment, ctx.segment_sigma, ctx.sharp_rejected = pieces, s, nil
   ctx.corners = sharp.corner_samples(P, pieces)
   return found.curve
@@ -920,7 +937,7 @@ function M.report(ctx)
   rep.closed = closed(ctx)
   rep.closed_ambiguous = ctx.closed_ambiguous or false
   rep.crossings = ctx.loops or 0
-  if sharp_path(ctx) then rep.pieces = ctx.segment end
+  if sharp_path(ctx) then rep.pieces, rep.pieces_sigma = ctx.segment, ctx.segment_sigma end
   rep.pieces_rejected = ctx.sharp_rejected
   -- warnings: appended to those the common report may already carry
   if ctx.warnings and #ctx.warnings > 0 then

@@ -12,7 +12,8 @@
 -- found.candidate the segmentation before the tests (the loops step falls back on it);
 -- found.disagreed, when the two noises disagreed, the pieces' (the windows' when no level
 -- of lines and arcs matched): auto tries the pieces at it when the smooth curve misses its
--- samples (noisy.at(P, s, sigma, closed): every test but that one).
+-- samples (noisy.at(P, s, sigma, closed): every test but that one; where they agreed but a
+-- test of the screen refused them, noisy.at(P, s, sigma, closed, true): leniently).
 --
 -- The tests, in order:
 --   - the noise read off the lines' and arcs' own residuals (bs.geom.segment_sigma) is
@@ -120,12 +121,12 @@ end
 
 -- What the pieces hold and how they meet: the indices of the weak corners, or nil and why.
 -- s: the noise read off the pieces, sigma: the windows'.
-local function screen(P, pieces, s, sigma)
+local function screen(P, pieces, s, sigma, lenient)
   local held, weak, strong = 0, {}, 0
   for i, p in ipairs(pieces) do
     local q = pieces[(i - 2) % #pieces + 1]
     if p.kind ~= "free" then held = held + p.count end
-    if p.kind == "free" and p.count == 0 and not sharp.continues(pieces, i) then
+    if p.kind == "free" and p.count == 0 and not lenient and not sharp.continues(pieces, i) then
       return nil, "bridge"
     end
     if p.join == "corner" then
@@ -147,12 +148,20 @@ local function screen(P, pieces, s, sigma)
   return weak
 end
 
--- the pieces with each weak corner softened into a bend (sharp.soften), or nil and why
-local function softened(P, pieces, weak)
+-- two lines meet at the corner where pieces[i] starts
+local function line_corner(pieces, i)
+  return pieces[i].kind == "line" and pieces[(i - 2) % #pieces + 1].kind == "line"
+end
+
+-- the pieces with each weak corner softened into a bend (sharp.soften), or nil and why;
+-- lenient: a corner of two lines whose sides are too short to soften stays a corner
+local function softened(P, pieces, weak, lenient)
   for k = #weak, 1, -1 do
     local soft = sharp.soften(P, pieces, weak[k])
-    if not soft then return nil, weak_message(pieces, weak[k]) end
-    pieces = soft
+    if not soft and not (lenient and line_corner(pieces, weak[k])) then
+      return nil, weak_message(pieces, weak[k])
+    end
+    pieces = soft or pieces
   end
   return pieces
 end
@@ -186,12 +195,12 @@ end
 
 -- the pieces with their weak corners softened but those bends_within keeps, or nil and
 -- why; and their curve when bends_within assembled it
-local function soften(P, pieces, weak, s, closed)
-  local soft, why = softened(P, pieces, weak)
+local function soften(P, pieces, weak, s, closed, lenient)
+  local soft, why = softened(P, pieces, weak, lenient)
   if not soft then return nil, why end
   local left, C = bends_within(P, pieces, weak, soft, s, closed)
   if #left == #weak then return soft, nil, C end
-  return softened(P, pieces, left)
+  return softened(P, pieces, left, lenient)
 end
 
 -- The one curve of the pieces and its largest distance to a sample, or nil and why: it
@@ -216,8 +225,10 @@ local function curve_within_noise(P, pieces, s, closed, C)
 end
 
 -- The pieces at noise s (the noise read off them; sigma: the windows'), through every test
--- but the agreement of the two: pieces, why, found as M.find's.
-function M.at(P, s, sigma, closed)
+-- but the agreement of the two: pieces, why, found as M.find's. lenient (auto's swap where
+-- the smooth curve misses its samples by 6 s, pieces a test of the screen refused): a
+-- bridge is allowed and a weak corner of two lines too short to soften stays a corner.
+function M.at(P, s, sigma, closed, lenient)
   local found, why = {}, nil
   local pieces = common.ok("segmentation", bs.geom.segment(P, { closed = closed, sigma = s }))
   -- one piece round a noisy section (a circle within the noise, a mesh's slice of a vase):
@@ -225,10 +236,10 @@ function M.at(P, s, sigma, closed)
   if #pieces < 2 then return nil, "one piece", found end
   found.candidate = { pieces = pieces, sigma = s }
   local weak
-  weak, why = screen(P, pieces, s, sigma)
+  weak, why = screen(P, pieces, s, sigma, lenient)
   if not weak then return nil, why, found end
   local made
-  pieces, why, made = soften(P, pieces, weak, s, closed)
+  pieces, why, made = soften(P, pieces, weak, s, closed, lenient)
   if not pieces then return nil, why, found end
   why = sharp.degenerate(pieces) or sharp.far_corner(P, pieces)
   if why then return nil, why, found end
