@@ -64,7 +64,7 @@ int bsfit__meet_lines(const bsfit__line *A, const bsfit__line *B, double x[2]);
 double *bsfit__spread(const double *pts, size_t m, size_t most, const bsfit_allocator *a,
                       size_t *msub, size_t *k);
 
-/* segment.c: the distance of sample q to the model of piece p (a line through its ends, a
+/* segment_joins.c: the distance of sample q to the model of piece p (a line through its ends, a
 ** circle); 0 for a free piece */
 double bsfit__piece_dist(const bsfit_piece *p, const double *q);
 

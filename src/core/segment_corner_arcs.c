@@ -3,7 +3,7 @@
 ** Under noise, an arc of a sparse cover that meets neither way round a corner is tried as
 ** the two lines of that corner (bsfit__split_corner_arcs, segment_internal.h).
 **
-** The cover prices a piece at RSS_PENALTY sigma^2 per parameter (segment.c), so that a
+** The cover prices a piece at RSS_PENALTY sigma^2 per parameter (segment_cover.c), so that a
 ** letter's square stem end is not read as a semicircle; but the same price makes one arc
 ** cheaper than two lines across a short noisy corner. A serif's two sides of 4 to 6
 ** samples became one arc of radius 0.15 whose circle met neither neighbour: the join

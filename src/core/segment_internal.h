@@ -1,9 +1,11 @@
 /*
 ** segment_internal.h
-** What the segmentation's files share (segment.c: runs, cover, joins, pieces;
-** segment_evidence.c: the evidence of corners; segment_fillets.c: fillets between lines):
-** the section worked on, a side model of either kind and their small accessors. Not part
-** of the public API.
+** What the segmentation's files share (segment.c: the pieces and bsfit_segment;
+** segment_runs.c: the maximal runs each model explains; segment_cover.c: the cover of
+** least cost; segment_joins.c: where pieces meet; segment_evidence.c: the evidence of
+** corners; segment_fillets.c: fillets between lines): the section worked on, a side model
+** of either kind, the cover's cells and heaps, and their small accessors. Not part of the
+** public API.
 */
 #ifndef BSFIT_SEGMENT_INTERNAL_H
 #define BSFIT_SEGMENT_INTERNAL_H
@@ -80,9 +82,81 @@ static inline double model_dist(const seg_model *md, const double *x) {
   return md->kind == LINE ? bsfit__line_dist(&md->line, x) : bsfit__circle_dist(&md->circle, x);
 }
 
+/* segment_runs.c: fits a model of `kind` to n samples from `first` (warm-started from
+** warm's circle when it is an arc); its largest distance (HUGE_VAL when it cannot be
+** fitted), its rms into *rms when not NULL */
+double bsfit__fit_model_from(const seg_section *s, int kind, size_t first, size_t n,
+                             const seg_model *warm, seg_model *md, double *rms);
+
+/* bsfit__fit_model_from with no warm start */
+static inline double fit_model(const seg_section *s, int kind, size_t first, size_t n,
+                               seg_model *md, double *rms) {
+  return bsfit__fit_model_from(s, kind, first, n, NULL, md, rms);
+}
+
+/* A model explains its samples when every one lies within tol. (A chi-square test on
+** their residual was tried as well: it turned fillets into corners; docs/auto.md.) This
+** is what makes runs nest: a model that explains a run explains every part of it. */
+static inline int fit_explains(const seg_section *s, int kind, size_t first, size_t n,
+                               const seg_model *warm, seg_model *md) {
+  return bsfit__fit_model_from(s, kind, first, n, warm, md, NULL) <= s->tol;
+}
+
+/* how many samples piece p holds */
+static inline size_t piece_count(const seg_section *s, const bsfit_piece *p) {
+  (void)s;
+  return p->count;
+}
+
+/* The turn from a to b round an arc's centre, in its direction, in [0, 2 pi). */
+static inline double turn_between(const seg_model *md, const double *a, const double *b) {
+  double ax = a[0] - md->circle.c[0], ay = a[1] - md->circle.c[1];
+  double bx = b[0] - md->circle.c[0], by = b[1] - md->circle.c[1];
+  double t = md->orient * atan2(ax * by - ay * bx, ax * bx + ay * by);
+  return t < 0 ? t + 2 * PI : t;
+}
+
 /* the residual sum of squares of a piece's fitted model (set by bsfit__segment_refit;
-** segment.c's piece_rss is the cover's, from moments) */
+** segment_cover.c's piece_rss is the cover's, from moments) */
 static inline double fitted_rss(const bsfit_piece *p) { return p->rms * p->rms * (double)p->count; }
+
+/* segment_runs.c: len[i] = the most samples from i that one model of `kind` explains (0
+** when fewer than its minimum); BSFIT_EINTR when interrupted */
+bsfit_err bsfit__maximal_runs(const seg_section *s, int kind, size_t *len);
+
+/* segment_cover.c: the weighed cover's price of one more parameter, in sigma^2 (the default
+** of param_cost; why, above piece_rss) */
+#define RSS_PENALTY 32.0
+
+/* DP state: the cheapest cover of offsets [0, j] whose last piece ends at j */
+typedef struct cell {
+  double cost;
+  size_t start; /* offset of the last piece's first sample */
+  int kind;
+  int shared;    /* the piece before ends at `start` too (a sampled corner) */
+  int prev_free; /* the piece before is free */
+} cell;
+
+/* The candidate starts of one kind's pieces: a binary heap of offsets, cheapest
+** before_start first, the later start first among equals (the shortest piece, as the
+** scan from the shortest piece up chose). Starts enter in increasing order once a piece
+** from them to j has the kind's minimum of distinct samples (a condition that, once
+** true, stays true as j grows); a start leaves when its run no longer reaches j (for
+** good: j only grows). O(m log m) for the cover, where a scan over every length was
+** O(m x longest run): quadratic on long sides. */
+typedef struct start_heap {
+  size_t *at;
+  double *key;
+  size_t *below; /* per start: the next older start of its group (none: (size_t)-1) */
+  size_t n, next;
+  size_t last, last_pos; /* the start pushed last, and where it went */
+} start_heap;
+
+/* segment_cover.c: the cheapest cover of the maximal runs len (pieces in order into p, from
+** p[m + 1] as scratch; a closed section cut where its longest runs start); sets s->longest
+** and returns the number of pieces */
+size_t bsfit__segment_cover(seg_section *s, size_t *const len[2], cell *prim, cell *fr,
+                            start_heap heaps[2], bsfit_piece *p);
 
 /* segment_evidence.c: how much worse one smooth curve explains the samples of A and B
 ** next to their corner than their two models, in units of sigma^2 */
@@ -95,11 +169,11 @@ double bsfit__join_evidence(const seg_section *s, const bsfit_piece *A, const se
 size_t bsfit__dense_cover(const seg_section *s, const bsfit_segment_opts *o, bsfit_piece *p,
                           bsfit_err *e, bsfit_status *st);
 
-/* segment.c: refits p's model md to its samples, and sets p's max, rms (and centre,
+/* segment_joins.c: refits p's model md to its samples, and sets p's max, rms (and centre,
 ** radius for arcs) */
 void bsfit__segment_refit(const seg_section *s, bsfit_piece *p, seg_model *md);
 
-/* segment.c: the model's foot point f of x and its unit tangent t there (along the
+/* segment_joins.c: the model's foot point f of x and its unit tangent t there (along the
 ** traversal) */
 void bsfit__model_foot(const seg_model *md, const double *x, double *f, double *t);
 
@@ -119,7 +193,7 @@ void bsfit__cover_fillets(const seg_section *s, bsfit_piece *p, seg_model *md, s
 double bsfit__fillet_radius_se(const seg_section *s, const bsfit_piece *A, const seg_model *ma,
                                const bsfit_piece *F, const bsfit_piece *B, const seg_model *mb);
 
-/* segment.c: where A and B (B after A) meet: 0 (nowhere between them), BSFIT_JOIN_CORNER or
+/* segment_joins.c: where A and B (B after A) meet: 0 (nowhere between them), BSFIT_JOIN_CORNER or
 ** BSFIT_JOIN_TANGENT, the point written to x */
 int bsfit__segment_meet(const seg_section *s, const bsfit_piece *A, const seg_model *ma,
                         const bsfit_piece *B, const seg_model *mb, double *x);

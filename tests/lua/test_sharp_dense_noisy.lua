@@ -82,7 +82,7 @@ end)
 
 -- An arc whose first samples follow a sampling gap at its corner: those samples bow less
 -- than the noise, the circle fitted to them went astray and the arc's run from them ended
--- a few samples on, so a line across the corner took them (segment.c, extend_arc_runs).
+-- a few samples on, so a line across the corner took them (segment_runs.c, extend_arc_runs).
 -- Keyholes of 60 and 150 samples per side, even and uneven, noise 1e-3 and 3e-3, six
 -- draws the other sweeps do not use: 39 of 48 were within the floor, 47 now.
 T.test("an arc's first samples after a gap at its corner stay on the arc (48 keyholes)", function()

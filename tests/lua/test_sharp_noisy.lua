@@ -88,7 +88,7 @@ end
 -- (241, 288, 234 and radii 147 of 179 within 2% before a fillet was made where its samples
 -- fix its radius to less than 1%, its samples taken from the lines first, segment_fillets.c)
 -- (251, 294, 245 before pieces a screen test refused at a noise that agreed were taken,
--- leniently, where the smooth curve missed a sample by 6 times that noise: auto.lua
+-- leniently, where the smooth curve missed a sample by 6 times that noise: pieces_path.lua
 -- pieces_for_misfit; radii 172 of 217 within 2% then, 174 of 222 since)
 -- Radii: within 2% where the samples fix them to 1% (radius_se), within 3 radius_se (or
 -- 2%) elsewhere; of all, the share within 2%. (Since a fillet's radius_se counts its

@@ -768,4 +768,52 @@ end
 
 -- }======================================================================
 
+
+-- {======================================================================
+-- Helpers of the strategies' steps
+-- =======================================================================
+
+-- v as a Lua array: a table as it is, a Vector's values, {} for nil.
+function M.as_table(v)
+  if v == nil then return {} end
+  if type(v) == "table" then return v end
+  return v:totable()
+end
+
+-- Adds a warning for rep.warnings.
+function M.warn(ctx, msg)
+  ctx.warnings = ctx.warnings or {}
+  ctx.warnings[#ctx.warnings + 1] = msg
+end
+
+-- Large sections are read through a subsample of at most SUBSAMPLE points for the
+-- noise level, the corners and the distances measured during the count search:
+-- all three are local or statistical, and the fits themselves still use every point.
+local SUBSAMPLE = 5000
+
+-- every s-th point of P (s = ceil(#P / SUBSAMPLE)), or nil when P is not larger
+function M.thinned(P)
+  if #P <= SUBSAMPLE then return nil end
+  local t = {}
+  for i = 1, #P, math.ceil(#P / SUBSAMPLE) do t[#t + 1] = { P:get(i) } end
+  return bs.points.new(t)
+end
+
+-- ctx.sub = {P = Points, stride = s, u = its parameters (set later)} when #P > SUBSAMPLE
+function M.subsample(ctx, P)
+  if ctx.sub ~= nil or #P <= SUBSAMPLE then return ctx.sub end
+  ctx.sub = { P = M.thinned(P), stride = math.ceil(#P / SUBSAMPLE) }
+  return ctx.sub
+end
+
+-- every s-th value of a Vector, as a Vector
+function M.every(v, s)
+  local r = {} -- read only the values kept, not the whole section into a table
+  for i = 1, #v, s do r[#r + 1] = v:get(i) end
+  return bs.vector.new(r)
+end
+
+
+-- }======================================================================
+
 return M
