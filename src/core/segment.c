@@ -25,6 +25,34 @@ static double rounding_floor(const double *pts, size_t m) {
   return 16.0 * DBL_EPSILON * big;
 }
 
+/* Is every coordinate a whole number of units 10^-k (within the rounding of its double)? */
+static int on_decimal_grid(const double *pts, size_t m, double scale) {
+  size_t i;
+  for (i = 0; i < 2 * m; i++) {
+    double v = pts[i] * scale;
+    if (!(fabs(v) < 0x1p50) || fabs(v - nearbyint(v)) > 8.0 * DBL_EPSILON * fmax(fabs(v), 1.0))
+      return 0;
+  }
+  return 1;
+}
+
+/* The floor a file's decimals set on the exact tolerance: samples written with k decimals
+** (every coordinate a whole number of 10^-k) are their true positions rounded to half a
+** unit of the k-th decimal, and a model through them misses them by up to about that: twice
+** the unit, where the unit is at most QUANTUM_MOST of the size (a coarser grid is the
+** data's own: integer samples of a polygon are exact); 0 otherwise. A bracket of the demo
+** set written with 6 decimals had its fillets of 3 samples meet its lines at corners of
+** 0.07 degrees (the fillets' circles through rounded samples, of radius 3.0000093, miss
+** the tangency to the lines by more than the tolerance of 1e-10 of the size). */
+#define QUANTUM_MOST 1e-5
+static double decimal_floor(const double *pts, size_t m, double size) {
+  double scale = 1.0;
+  int k;
+  for (k = 0; k <= 15; k++, scale *= 10.0)
+    if (on_decimal_grid(pts, m, scale)) return 1.0 / scale <= QUANTUM_MOST * size ? 1.0 / scale : 0.0;
+  return 0.0;
+}
+
 /* {====================================================================
 ** The pieces
 ** ===================================================================== */
@@ -590,7 +618,8 @@ bsfit_err bsfit_segment(const double *pts, size_t m, int dim, const bsfit_segmen
   s.min_len[ARC] = o.min_arc ? o.min_arc : 4;
   s.size = bsfit__segment_size(pts, m);
   s.tol = fmax((o.tol_sigma > 0 ? o.tol_sigma : 4.0) * o.sigma,
-               fmax((o.exact > 0 ? o.exact : 1e-10) * s.size, rounding_floor(pts, m)));
+               fmax((o.exact > 0 ? o.exact : 1e-10) * s.size,
+                    fmax(rounding_floor(pts, m), decimal_floor(pts, m, s.size))));
   s.unit = s.tol / (o.tol_sigma > 0 ? o.tol_sigma : 4.0);
   s.noisy = o.sigma > 0 && s.tol <= (o.tol_sigma > 0 ? o.tol_sigma : 4.0) * o.sigma;
   s.gaps = bsfit__alloc(a, bsfit__mulsize(2 * m + 1, sizeof(size_t)));
