@@ -112,7 +112,9 @@ T.test("pieces a screen test refused give way where the smooth curve misses by 6
   end
   print(("# %d sections: %d swapped on a screen test, %d nearer the truth, %d within the floor (%d smooth)")
     :format(n, swaps, nearer, within, smooth_within))
-  T.ok(swaps >= 10, swaps .. " swaps")
+  -- (16 swaps before pieces refused at the noise level and the two above were tried one
+  -- level below it, noisy_pieces.find: 9 of those sections now take their pieces there)
+  T.ok(swaps >= 5, swaps .. " swaps")
   T.ok(nearer >= 0.9 * swaps, nearer .. " of the swapped nearer the true outline")
   T.ok(within > smooth_within, within .. " of the swapped within the floor")
 end)
