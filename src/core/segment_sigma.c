@@ -70,6 +70,15 @@ static level level_of(const double *pts, size_t m, const bsfit_piece *p, size_t 
 ** curve). */
 #define LEVEL_STEP BSFIT_SEGMENT_SIGMA_STEP /* 10^(1/4) */
 #define LEVEL_FINE 1.2115276586285884 /* 10^(1/12) */
+/* A level matches only where its lines and arcs hold HELD_MATCH of the samples: below,
+** its pooled residual is read off a minority of them (a D of 10 uneven samples per side at
+** noise 1e-3 matched at 0.08 of its noise a line of 5 samples and 15 free ones, held 5 of
+** 20; its line and arc, the same from 0.33 to 25 times the noise, were never reached: 24
+** times the floor, 0.12 now). Three other draws of the sweep: with 0.5, +2 within the floor
+** and none farther; 0.75: +5 and 2 farther (a keyhole of 4 uneven samples per side at
+** 3e-3 from 3.5 to 14 times the floor); 0.9, what the pieces must hold to be used: +7 and
+** 7 farther. */
+#define HELD_MATCH 0.5
 
 /* the search's scratch: the options, room for the pieces (twice) and for their samples'
 ** distances */
@@ -115,7 +124,8 @@ static bsfit_err try_level(const double *pts, size_t m, double s, level_scratch 
   w->o->sigma = s;
   if ((e = bsfit_segment(pts, m, 2, w->o, w->p, 2 * m + 2, &np, a, st)) != BSFIT_OK) return e;
   *l = level_of(pts, m, w->p, np, w->d);
-  *match = l->pooled >= 0 && l->pooled <= 1.2 * s && l->pooled <= 3.0 * l->robust;
+  *match = l->pooled >= 0 && l->pooled <= 1.2 * s && l->pooled <= 3.0 * l->robust &&
+           (double)l->held >= HELD_MATCH * (double)m;
   if (!*match && l->pooled >= 0 && l->pooled <= 1.2 * s && (double)l->held >= 0.9 * (double)m)
     return stable_match(pts, m, s, np, w, match, a, st);
   return BSFIT_OK;
