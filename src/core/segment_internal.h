@@ -102,12 +102,6 @@ static inline int fit_explains(const seg_section *s, int kind, size_t first, siz
   return bsfit__fit_model_from(s, kind, first, n, warm, md, NULL) <= s->tol;
 }
 
-/* how many samples piece p holds */
-static inline size_t piece_count(const seg_section *s, const bsfit_piece *p) {
-  (void)s;
-  return p->count;
-}
-
 /* The turn from a to b round an arc's centre, in its direction, in [0, 2 pi). */
 static inline double turn_between(const seg_model *md, const double *a, const double *b) {
   double ax = a[0] - md->circle.c[0], ay = a[1] - md->circle.c[1];

@@ -12,7 +12,7 @@
 /* segment_internal.h */
 void bsfit__segment_refit(const seg_section *s, bsfit_piece *p, seg_model *md) {
   double rms = 0;
-  p->max = fit_model(s, p->kind, p->first, piece_count(s, p), md, &rms);
+  p->max = fit_model(s, p->kind, p->first, p->count, md, &rms);
   p->rms = rms;
   if (p->kind == ARC) {
     memcpy(p->centre, md->circle.c, sizeof p->centre);
@@ -50,7 +50,7 @@ void bsfit__model_foot(const seg_model *md, const double *x, double *f, double *
 ** BSFIT_COORD_MAX, their squares far from overflow) and one root: hypot per step was 13%
 ** of a 10^5-sample T's run, every join asking for it several times */
 static double max_spacing(const seg_section *s, const bsfit_piece *p) {
-  size_t k, n = piece_count(s, p);
+  size_t k, n = p->count;
   double h2 = 0;
   for (k = 0; k + 1 < n; k++) {
     const double *a = sample(s, p->first + k), *b = sample(s, p->first + k + 1);
@@ -138,8 +138,8 @@ static int in_gap(const seg_section *s, const bsfit_piece *A, const seg_model *m
 ** their models that lies in the gap between them (nearest to both samples), a corner
 ** unless their directions there agree to what the tolerance lets them vary over the
 ** shorter piece. Returns 0 (no such point), BSFIT_JOIN_CORNER or BSFIT_JOIN_TANGENT. */
-static int meet(const seg_section *s, const bsfit_piece *A, const seg_model *ma,
-                const bsfit_piece *B, const seg_model *mb, double *x) {
+int bsfit__segment_meet(const seg_section *s, const bsfit_piece *A, const seg_model *ma,
+                        const bsfit_piece *B, const seg_model *mb, double *x) {
   const double *qa = sample(s, A->first + A->count - 1), *qb = sample(s, B->first);
   double cand[2][2], best = HUGE_VAL, ta[2], tb[2], f[2], lim, angle;
   int nc = 0, k, found = 0;
@@ -176,10 +176,4 @@ static int meet(const seg_section *s, const bsfit_piece *A, const seg_model *ma,
   angle = atan2(fabs(ta[0] * tb[1] - ta[1] * tb[0]), ta[0] * tb[0] + ta[1] * tb[1]);
   lim = 4.0 * s->tol / fmax(1.5 * fmin(max_spacing(s, A), max_spacing(s, B)), 1e-300);
   return angle <= fmin(lim, 0.1) ? BSFIT_JOIN_TANGENT : BSFIT_JOIN_CORNER;
-}
-
-/* segment_internal.h */
-int bsfit__segment_meet(const seg_section *s, const bsfit_piece *A, const seg_model *ma,
-                        const bsfit_piece *B, const seg_model *mb, double *x) {
-  return meet(s, A, ma, B, mb, x);
 }

@@ -6,7 +6,7 @@
 -- which rounded its corners: 2.5% of its size off; a keyhole 0.5%; the demo's bracket had
 -- its fillets meet its lines at corners of 0.07 degrees. The segmentation now takes the
 -- decimal grid every coordinate lies on as a floor of its exact tolerance (segment.c,
--- decimal_floor: twice the grid's unit, where that unit is at most 1e-5 of the size), and
+-- decimal_floor: the grid's unit, where it is at most 1e-5 of the size), and
 -- the exact path refuses arcs that meet at corners of less than a degree (sharp.lua,
 -- arc_chain_corner): smooth curves written so, read as chains of short arcs, keep the
 -- smooth path or their tangent arcs, never false corners.
