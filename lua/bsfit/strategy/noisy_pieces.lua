@@ -119,16 +119,6 @@ local function unconfirmed(P, pieces, weak, s)
   return out
 end
 
--- The longest step between consecutive samples of P, the closing one too.
-local function longest_step(P)
-  local longest, qx, qy = 0, P:get(#P)
-  for i = 1, #P do
-    local x, y = P:get(i)
-    longest, qx, qy = math.max(longest, math.sqrt((x - qx) ^ 2 + (y - qy) ^ 2)), x, y
-  end
-  return longest
-end
-
 -- Is the bridge pieces[i] (a free piece of no samples) allowed? Between two lines that
 -- continue each other; leniently, also where its chord is at most BRIDGE_REACH times the
 -- longest step between samples: a bridge spans a stretch no sample saw, and one longer than
@@ -136,23 +126,24 @@ end
 -- samples per side at noise 1e-3 bridged 0.93 of its longest step: 14 -> 37 times the
 -- floor; of 41 lenient swaps with bridges on sparse sweeps of other seeds, the 6 that went
 -- farther from the truth by more than 5% all bridged 0.65 to 0.93 of it).
+-- (reach: BRIDGE_REACH times the longest step, or nil when not lenient)
 local BRIDGE_REACH = 0.5
-local function bridge_allowed(P, pieces, i, lenient)
+local function bridge_allowed(pieces, i, reach)
   if sharp.continues(pieces, i) then return true end
-  if not lenient then return false end
+  if not reach then return false end
   local p = pieces[i]
-  local chord = math.sqrt((p.start[1] - p["end"][1]) ^ 2 + (p.start[2] - p["end"][2]) ^ 2)
-  return chord <= BRIDGE_REACH * longest_step(P)
+  return math.sqrt((p.start[1] - p["end"][1]) ^ 2 + (p.start[2] - p["end"][2]) ^ 2) <= reach
 end
 
 -- What the pieces hold and how they meet: the indices of the weak corners, or nil and why.
 -- s: the noise read off the pieces, sigma: the windows'.
 local function screen(P, pieces, s, sigma, lenient)
   local held, weak, strong = 0, {}, 0
+  local reach = lenient and BRIDGE_REACH * sharp.longest_step(P) or nil
   for i, p in ipairs(pieces) do
     local q = pieces[(i - 2) % #pieces + 1]
     if p.kind ~= "free" then held = held + p.count end
-    if p.kind == "free" and p.count == 0 and not bridge_allowed(P, pieces, i, lenient) then
+    if p.kind == "free" and p.count == 0 and not bridge_allowed(pieces, i, reach) then
       return nil, "bridge"
     end
     if p.join == "corner" then

@@ -600,17 +600,21 @@ end
 -- section (two noisy sides meeting at a spike far out: a keyhole of 4 uneven samples per
 -- side at noise 1e-2 had its last two sides meet 5 units below it) is not what the samples
 -- show. Returns a message, or nil.
+-- The longest step between consecutive samples of P (2D), the closing one too.
+function M.longest_step(P)
+  local longest, qx, qy = 0, P:get(#P)
+  for i = 1, #P do
+    local x, y = P:get(i)
+    longest, qx, qy = math.max(longest, math.sqrt((x - qx) ^ 2 + (y - qy) ^ 2)), x, y
+  end
+  return longest
+end
+
 function M.far_corner(P, pieces)
-  local m, longest = #P, 0
+  local m, longest = #P, M.longest_step(P)
   local function to(x, i) -- the distance from {x, y} to sample i
     local px, py = P:get(i)
     return math.sqrt((x[1] - px) ^ 2 + (x[2] - py) ^ 2)
-  end
-  local qx, qy = P:get(m)
-  for i = 1, m do -- the steps, the closing one too
-    local px, py = P:get(i)
-    longest = math.max(longest, math.sqrt((px - qx) ^ 2 + (py - qy) ^ 2))
-    qx, qy = px, py
   end
   for k, p in ipairs(pieces) do
     if p.join == "corner" then
