@@ -45,9 +45,11 @@ T.test("sides of 3 and 4 samples: the noise read off their lines and arcs", func
   T.ok(none <= FLOOR.none, none .. " with no level")
 end)
 
-T.test("sides of 3 and 4 samples: auto within the floor, few far off", function()
+-- auto on every case of the iterator: how many sections, how many within the floor (3
+-- sigma + 1e-3 of the size), how many more than 10 times it; none crosses itself
+local function outcome(iter)
   local n, within, gross = 0, 0, 0
-  for c in cases() do
+  for c in iter do
     local C, rep = auto.run(bs.points.new(c.pts))
     local r = shapes.floor_ratio(bs, C, c)
     n = n + 1
@@ -55,10 +57,19 @@ T.test("sides of 3 and 4 samples: auto within the floor, few far off", function(
     if r > 10 then gross = gross + 1 end
     T.eq(rep.crossings, 0, ("%s %d per side noise %g: crossings"):format(c.name, c.per, c.rel))
   end
-  print(("# %d sections: %d within 3 sigma + 1e-3 of the size, %d more than 10 times it")
-    :format(n, within, gross))
-  T.ok(within >= FLOOR.within, within .. " within the floor")
-  T.ok(gross <= FLOOR.gross, gross .. " more than 10 times the floor")
+  print(("# %d sections: %d within the floor, %d more than 10 times it"):format(n, within, gross))
+  return n, within, gross
+end
+
+-- outcome() held to floor = {n, within, gross}
+local function holds(floor, n, within, gross)
+  T.eq(n, floor.n, "sections")
+  T.ok(within >= floor.within, within .. " within the floor")
+  T.ok(gross <= floor.gross, gross .. " more than 10 times the floor")
+end
+
+T.test("sides of 3 and 4 samples: auto within the floor, few far off", function()
+  holds(FLOOR, outcome(cases()))
 end)
 
 -- Pieces refused at the level the noise search found and at the two above it (a bridge, a
@@ -74,20 +85,9 @@ end)
 -- three other draws of the sweep (2340 sections) +10 within, 2 farther (an E of 4 samples
 -- per side 13.6 -> 15.6, a gear of 6 at 1e-4 0.68 -> 2.1); 840 smooth sections unchanged.
 T.test("pieces refused at the noise level and above are tried one level below, with a strong corner", function()
-  local floor = shapes.thinned and { n = 208, within = 142, gross = 21 } or { n = 624, within = 431, gross = 65 }
-  local n, within, gross = 0, 0, 0
-  for c in shapes.sweep_cases { pers = { 3, 4, 5, 6 }, rels = { 1e-4, 1e-3 }, draws = 3, thin = true,
-      seed = function(k, per, j, d) return 5000 + 1000 * k + 10 * per + j + 100000 * d end } do
-    local C = auto.run(bs.points.new(c.pts))
-    local r = shapes.floor_ratio(bs, C, c)
-    n = n + 1
-    if r <= 1 then within = within + 1 end
-    if r > 10 then gross = gross + 1 end
-  end
-  print(("# %d sections: %d within the floor, %d more than 10 times it"):format(n, within, gross))
-  T.eq(n, floor.n, "sections")
-  T.ok(within >= floor.within, within .. " within the floor")
-  T.ok(gross <= floor.gross, gross .. " more than 10 times the floor")
+  holds(shapes.thinned and { n = 208, within = 142, gross = 21 } or { n = 624, within = 431, gross = 65 },
+        outcome(shapes.sweep_cases { pers = { 3, 4, 5, 6 }, rels = { 1e-4, 1e-3 }, draws = 3, thin = true,
+          seed = function(k, per, j, d) return 5000 + 1000 * k + 10 * per + j + 100000 * d end }))
 end)
 
 -- A level matches only where its lines and arcs hold half the samples (segment_sigma.c,

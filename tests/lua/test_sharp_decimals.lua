@@ -16,6 +16,8 @@ local shapes = require "shapes_sharp"
 local synth = require "synth"
 local auto = require "bsfit.strategy.auto"
 
+local DEMO = (debug.getinfo(1, "S").source:match("^@(.*)/[^/]*$") or ".") .. "/../data/demo/"
+
 local function rounded(pts, decimals)
   local f, out = 10 ^ decimals, {}
   for i, p in ipairs(pts) do
@@ -79,8 +81,7 @@ T.test("smooth shapes written with 5 and 6 decimals: no corner, no loop", functi
 end)
 
 T.test("the demo's bracket (6 decimals): its fillets meet its lines tangentially", function()
-  local here = debug.getinfo(1, "S").source:match("^@(.*)/[^/]*$") or "."
-  local P = assert(bs.points.read(here .. "/../data/demo/bracket.csv"))
+  local P = assert(bs.points.read(DEMO .. "bracket.csv"))
   local _, rep = auto.run(P)
   local arcs, tangent_arcs = 0, 0
   for i, p in ipairs(rep.pieces) do
@@ -94,4 +95,19 @@ T.test("the demo's bracket (6 decimals): its fillets meet its lines tangentially
   T.eq(arcs, 4, "fillets")
   T.eq(tangent_arcs, 4, "fillets tangent at both ends")
   T.eq((joins(rep)), 4, "corners: the notch's four")
+end)
+
+-- The demo's cam (README's table): a base circle of radius 20 and a lobe, 6 decimals. One
+-- smooth curve 1.6e-3 from its samples before; its base circle one exact arc now, the lobe
+-- a free run, every sample within the rounding.
+T.test("the demo's cam (6 decimals): its base circle one arc of radius 20", function()
+  local _, rep = auto.run(assert(bs.points.read(DEMO .. "cam.csv")))
+  local arcs = {}
+  for _, p in ipairs(rep.pieces or {}) do
+    if p.kind == "arc" then arcs[#arcs + 1] = p end
+  end
+  T.eq(#arcs, 1, "one arc")
+  T.near(arcs[1].radius, 20, 1e-6, "its radius")
+  T.ok(rep.max <= 1e-6, ("%.3g from a sample"):format(rep.max))
+  T.eq((joins(rep)), 0, "no corner")
 end)
