@@ -389,7 +389,7 @@ end
 -- and arcs must hold at least half the samples: a short run that rounded data fits
 -- by chance (4 samples of a cam's base circle, to 6 decimals) does not make a section
 -- of lines and arcs.
--- A corner of less than ARC_CHAIN_TURN degrees with an arc beside it, or that one smooth
+-- A corner of less than SLIGHT_TURN degrees with an arc beside it, or that one smooth
 -- curve explains better than the two models (its evidence below CHAIN_EVIDENCE, in units
 -- of the tolerance over 4): arcs and short lines that follow a smooth curve, each within the
 -- tolerance of its samples, and meet at a slight angle. On exact samples the tolerance (1e-10
@@ -398,11 +398,11 @@ end
 -- written with 5 or 6 decimals were read as chains of arcs and lines meeting at corners of
 -- 0.01 to 0.4 degrees (evidence -27 to 169). A polygon's exact corners, however slight, are
 -- worth far more.
-local ARC_CHAIN_TURN, CHAIN_EVIDENCE = 1, 25
-local function arc_chain_corner(pieces)
+local SLIGHT_TURN, CHAIN_EVIDENCE = 1, 25
+local function slight_corner(pieces)
   for i, p in ipairs(pieces) do
     local q = pieces[(i - 2) % #pieces + 1]
-    if p.join == "corner" and p.turn and p.turn < ARC_CHAIN_TURN and
+    if p.join == "corner" and p.turn and p.turn < SLIGHT_TURN and
        (p.kind == "arc" or q.kind == "arc" or (p.evidence or math.huge) < CHAIN_EVIDENCE) then
       return true
     end
@@ -411,7 +411,7 @@ local function arc_chain_corner(pieces)
 end
 
 function M.has_features(pieces, m)
-  if M.degenerate(pieces) or arc_chain_corner(pieces) then return false end
+  if M.degenerate(pieces) or slight_corner(pieces) then return false end
   local held = 0
   for _, p in ipairs(pieces) do if p.kind ~= "free" then held = held + p.count end end
   return held >= 0.5 * m
