@@ -8,7 +8,7 @@
 -- decimal grid every coordinate lies on as a floor of its exact tolerance (segment.c,
 -- decimal_floor: the grid's unit, where it is at most 1e-5 of the size), and
 -- the exact path refuses arcs that meet at corners of less than a degree (sharp.lua,
--- arc_chain_corner): smooth curves written so, read as chains of short arcs, keep the
+-- slight_corner): smooth curves written so, read as chains of short arcs, keep the
 -- smooth path or their tangent arcs, never false corners.
 local T = require "tap"
 local bs = require "bsfit"
