@@ -59,6 +59,15 @@ function M.corners_of(rep)
   return n
 end
 
+-- The checks of a smooth section's result (C, rep from auto.run): no loop, reported or
+-- not (T.eq through `T`, tap's), and its name added to `cornered` when it shows a corner
+-- (the callers count them and hold the count to 0).
+function M.check_smooth(T, C, rep, what, cornered)
+  if M.corners_of(rep) > 0 then cornered[#cornered + 1] = what end
+  T.eq(rep.crossings, 0, what .. ": crossings")
+  T.eq((bs.geom.self_intersections(C, 2000)), 0, what .. ": self-intersection")
+end
+
 -- points {x, y} of a smooth shape, m of them, uneven spacing when `uneven`
 function M.sample_smooth(f, m, uneven)
   local pts = {}

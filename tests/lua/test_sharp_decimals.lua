@@ -69,9 +69,7 @@ T.test("smooth shapes written with 5 and 6 decimals: no corner, no loop", functi
           local pts = rounded(synth.sample_smooth(SMOOTH[name], m, uneven), decimals)
           local what = ("%s %d points %d decimals%s"):format(name, m, decimals, uneven and " uneven" or "")
           local C, rep = auto.run(bs.points.new(pts))
-          if synth.corners_of(rep) > 0 then false_corners[#false_corners + 1] = what end
-          T.eq(rep.crossings, 0, what .. ": crossings")
-          T.eq((bs.geom.self_intersections(C, 2000)), 0, what .. ": self-intersection")
+          synth.check_smooth(T, C, rep, what, false_corners)
         end
       end
     end

@@ -339,11 +339,7 @@ T.test("smooth shapes: no corner, no loop (24 to 200 points, noise 0 to 1e-2, ev
           local what = ("%s %d points noise %g%s"):format(name, m, rel, uneven and " uneven" or "")
           local ok, C, rep = pcall(auto.run, P)
           T.ok(ok, what .. ": " .. tostring(ok or C))
-          if ok then
-            if synth.corners_of(rep) > 0 then false_corners[#false_corners + 1] = what end
-            T.eq(rep.crossings, 0, what .. ": crossings")
-            T.eq((bs.geom.self_intersections(C, 2000)), 0, what .. ": self-intersection")
-          end
+          if ok then synth.check_smooth(T, C, rep, what, false_corners) end
         end
       end
     end
