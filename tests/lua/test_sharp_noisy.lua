@@ -205,10 +205,14 @@ end)
 -- Every line of bs.geom.segment runs from its start to its end along its reported tangent
 -- (its model's direction). A line refitted after giving a fillet its samples kept its other
 -- join where its old model met the neighbour's: 31 of 2741 lines of the sweep's sections
--- (segmented at the noise they show) left their direction, by up to 27 degrees.
-T.test("lines run along their reported tangents", function()
+-- (segmented at the noise they show) left their direction, by up to 27 degrees. On two more
+-- draws with seeds of their own (2026-12-07), 4 lines more: one after a free bridge (a
+-- filleted pentagon of 10 samples per side at noise 3e-3, 0.13 degrees), and one whose
+-- fillet then refused the refit and kept its join with it where the old line had been (a
+-- slot of 5 per side at noise 3e-3, 0.45 degrees).
+local function lines_off_tangent(cases)
   local lines, off, worst = 0, 0, 0
-  for c in shapes.sweep_cases() do
+  for c in cases do
     local P = bs.points.new(c.pts)
     local s = bs.geom.segment_sigma(P, { closed = true })
     for _, p in ipairs(s and bs.geom.segment(P, { closed = true, sigma = s }) or {}) do
@@ -224,9 +228,21 @@ T.test("lines run along their reported tangents", function()
       end
     end
   end
+  return lines, off, worst
+end
+
+T.test("lines run along their reported tangents", function()
+  local lines, off, worst = lines_off_tangent(shapes.sweep_cases())
   print(("# %d lines, %d off their tangent, the most by sin %.3g"):format(lines, off, worst))
   T.ok(lines > 2000, ("%d lines"):format(lines))
   T.eq(off, 0, "lines off their reported tangent")
+  for _, base in ipairs { 61000, 111000 } do
+    lines, off, worst = lines_off_tangent(shapes.sweep_cases { draws = 2, thin = true,
+      seed = function(k, per, j, d) return base + 1000 * k + 10 * per + j + 100000 * d end })
+    print(("# seeds from %d: %d lines, %d off their tangent, the most by sin %.3g"):format(base, lines, off, worst))
+    T.ok(lines > (shapes.thinned and 1000 or 4000), ("%d lines"):format(lines))
+    T.eq(off, 0, ("seeds from %d: lines off their reported tangent"):format(base))
+  end
 end)
 
 -- bs.geom.segment_sigma on sparse sections of lines and arcs, 3 to 6 samples per side: its
