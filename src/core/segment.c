@@ -284,8 +284,8 @@ static size_t place_ends(const seg_section *s, bsfit_piece *p, seg_model *md, si
 ** gear of 3 samples per side read its noise 30 times too high; 42 of 1422 dense ones, by
 ** up to 0.1): its reported tangent was not the curve's. A join whose models no longer meet
 ** so keeps its place. A line's join with a free run moves to the foot of its extreme sample
-** on its new model (a line before a fillet, after a free bridge, kept the foot on its old
-** model: a filleted hexagon and a slot of 10 samples per side, 1.5e-4 off its direction). */
+** on its new model (a line after a free bridge and before a fillet kept the foot on its old
+** model: a filleted pentagon of 10 samples per side at noise 3e-3, 0.13 degrees off). */
 static void rejoin_lines(const seg_section *s, bsfit_piece *p, seg_model *md, size_t np) {
   size_t i;
   for (i = np < 2 ? np : 0; i < np; i++) {
