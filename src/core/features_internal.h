@@ -59,10 +59,16 @@ int bsfit__meet_lines(const bsfit__line *A, const bsfit__line *B, double x[2]);
 ** segmentation's cover (segment_dense.c) and its noise search (segment_sigma.c) */
 #define BSFIT__DENSE_MOST 500
 
-/* segment_dense.c: every k-th of the m samples (k = ceil(m / most)), a new array of *msub
-** points (free it with 2 *msub doubles), *k the stride; NULL when out of memory */
-double *bsfit__spread(const double *pts, size_t m, size_t most, const bsfit_allocator *a,
-                      size_t *msub, size_t *k);
+/* segment_dense.c: where the reading of a closed section begins, so that it reads the same
+** from whichever sample its data start at: the sample after the longest step between
+** samples (ties: the one lowest in x, then y) */
+size_t bsfit__closed_start(const double *pts, size_t m);
+
+/* segment_dense.c: every k-th of the m samples (k = ceil(m / most)) from sample `first`
+** (round a closed section; 0 for an open one), a new array of *msub points (free it with 2
+** *msub doubles), *k the stride; NULL when out of memory */
+double *bsfit__spread(const double *pts, size_t m, size_t first, size_t most,
+                      const bsfit_allocator *a, size_t *msub, size_t *k);
 
 /* segment_joins.c: the distance of sample q to the model of piece p (a line through its ends, a
 ** circle); 0 for a free piece */

@@ -19,23 +19,36 @@
 #include <string.h>
 
 /* features_internal.h */
-double *bsfit__spread(const double *pts, size_t m, size_t most, const bsfit_allocator *a,
-                      size_t *msub, size_t *k) {
+size_t bsfit__closed_start(const double *pts, size_t m) {
+  size_t i, best = 0;
+  double longest = -1;
+  for (i = 0; i < m; i++) {
+    const double *a = pts + 2 * ((i + m - 1) % m), *b = pts + 2 * i, *c = pts + 2 * best;
+    double dx = b[0] - a[0], dy = b[1] - a[1], step = dx * dx + dy * dy; /* squared */
+    if (step > longest || (step == longest && (b[0] < c[0] || (b[0] == c[0] && b[1] < c[1]))))
+      longest = step, best = i;
+  }
+  return best;
+}
+
+/* features_internal.h */
+double *bsfit__spread(const double *pts, size_t m, size_t first, size_t most,
+                      const bsfit_allocator *a, size_t *msub, size_t *k) {
   double *sub;
   size_t i;
   *k = (m + most - 1) / most, *msub = (m + *k - 1) / *k;
   sub = bsfit__alloc(a, bsfit__mulsize(2 * *msub, sizeof *sub));
   if (sub)
-    for (i = 0; i < *msub; i++) memcpy(sub + 2 * i, pts + 2 * i * *k, 2 * sizeof *sub);
+    for (i = 0; i < *msub; i++) memcpy(sub + 2 * i, pts + 2 * ((first + i * *k) % m), 2 * sizeof *sub);
   return sub;
 }
 
 static double square(double x) { return x * x; }
 
 /* unwrapped subsample index u of a section of m samples read every k-th (msub of them)
-** -> unwrapped index of the section */
-static size_t full_index(size_t u, size_t msub, size_t m, size_t k) {
-  return u / msub * m + u % msub * k;
+** from sample `first` -> unwrapped index of the section */
+static size_t full_index(size_t u, size_t msub, size_t m, size_t k, size_t first) {
+  return u / msub * m + first + u % msub * k;
 }
 
 /* The first sample of B, A the piece before it: ea is A's last sample, sb B's first (from
@@ -64,20 +77,21 @@ static size_t boundary(const seg_section *s, const bsfit_piece *A, const bsfit_p
 ** not below 0. Returns 0 when a piece keeps fewer samples than its kind needs, or fewer
 ** distinct ones (segment_internal.h: distinct; the cover's own rule for a run). */
 static int place_boundaries(const seg_section *s, const bsfit_piece *q, const size_t *idx,
-                            size_t n, size_t msub, size_t k, size_t reach, size_t *bound) {
+                            size_t n, size_t msub, size_t k, size_t first, size_t reach,
+                            size_t *bound) {
   size_t i, turn = s->closed ? msub : 0, origin = q[idx[0]].first;
 #define FIRST(i) (turn + origin + (q[idx[i]].first + msub - origin) % msub)
 #define LAST(i) (FIRST(i) + q[idx[i]].count - 1)
   for (i = 1; i < n; i++)
-    bound[i] = boundary(s, &q[idx[i - 1]], &q[idx[i]], full_index(LAST(i - 1), msub, s->m, k),
-                        full_index(FIRST(i), msub, s->m, k), reach);
+    bound[i] = boundary(s, &q[idx[i - 1]], &q[idx[i]], full_index(LAST(i - 1), msub, s->m, k, first),
+                        full_index(FIRST(i), msub, s->m, k, first), reach);
   if (!s->closed)
     bound[0] = 0, bound[n] = s->m;
   else if (n == 1)
-    bound[0] = full_index(FIRST(0), msub, s->m, k), bound[1] = bound[0] + s->m;
+    bound[0] = full_index(FIRST(0), msub, s->m, k, first), bound[1] = bound[0] + s->m;
   else /* the closing boundary: the last piece in the turn before the first */
-    bound[0] = boundary(s, &q[idx[n - 1]], &q[idx[0]], full_index(LAST(n - 1) - msub, msub, s->m, k),
-                        full_index(FIRST(0), msub, s->m, k), reach),
+    bound[0] = boundary(s, &q[idx[n - 1]], &q[idx[0]], full_index(LAST(n - 1) - msub, msub, s->m, k, first),
+                        full_index(FIRST(0), msub, s->m, k, first), reach),
     bound[n] = bound[0] + s->m;
 #undef FIRST
 #undef LAST
@@ -98,13 +112,13 @@ static int place_boundaries(const seg_section *s, const bsfit_piece *q, const si
 ** every k-th sample may put it a sample off); where that leaves a piece too few samples,
 ** every boundary is kept between its two pieces' subsample samples. Returns their number. */
 static size_t move_pieces(const seg_section *s, const bsfit_piece *q, size_t np, size_t msub,
-                          size_t k, size_t *idx, size_t *bound, bsfit_piece *p) {
+                          size_t k, size_t first, size_t *idx, size_t *bound, bsfit_piece *p) {
   size_t i, n = 0;
   for (i = 0; i < np; i++)
     if (q[i].count > 0) idx[n++] = i;
   if (n == 0) return 0;
-  if (!place_boundaries(s, q, idx, n, msub, k, k, bound))
-    place_boundaries(s, q, idx, n, msub, k, 0, bound);
+  if (!place_boundaries(s, q, idx, n, msub, k, first, k, bound))
+    place_boundaries(s, q, idx, n, msub, k, first, 0, bound);
   for (i = 0; i < n; i++) {
     memset(&p[i], 0, sizeof p[i]);
     p[i].kind = q[idx[i]].kind;
@@ -118,7 +132,8 @@ static size_t move_pieces(const seg_section *s, const bsfit_piece *q, size_t np,
 size_t bsfit__dense_cover(const seg_section *s, const bsfit_segment_opts *o, bsfit_piece *p,
                           bsfit_err *e, bsfit_status *st) {
   size_t k, msub = 0, np = 0, pbytes = 0, bbytes = 0;
-  double *sub = bsfit__spread(s->pts, s->m, BSFIT__DENSE_MOST, s->a, &msub, &k);
+  size_t first = s->closed ? bsfit__closed_start(s->pts, s->m) : 0;
+  double *sub = bsfit__spread(s->pts, s->m, first, BSFIT__DENSE_MOST, s->a, &msub, &k);
   bsfit_piece *q = NULL;
   size_t *bound = NULL; /* and the pieces' places in q, after it */
   pbytes = bsfit__mulsize(2 * msub + 2, sizeof *q), bbytes = bsfit__mulsize(4 * msub + 6, sizeof *bound);
@@ -129,7 +144,7 @@ size_t bsfit__dense_cover(const seg_section *s, const bsfit_segment_opts *o, bsf
     goto done;
   }
   *e = bsfit_segment(sub, msub, 2, o, q, 2 * msub + 2, &np, s->a, st);
-  if (*e == BSFIT_OK && (np = move_pieces(s, q, np, msub, k, bound + 2 * msub + 3, bound, p)) == 0)
+  if (*e == BSFIT_OK && (np = move_pieces(s, q, np, msub, k, first, bound + 2 * msub + 3, bound, p)) == 0)
     *e = bsfit__fail(st, BSFIT_EDEGENERATE, "segmentation: no piece on every %zu-th of %zu points", k, s->m);
 done:
   bsfit__free(s->a, sub, sub ? 2 * msub * sizeof *sub : 0);

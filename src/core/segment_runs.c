@@ -196,19 +196,11 @@ static void extend_arc_runs(const seg_section *s, size_t *len, size_t first) {
 ** held past its first sample): began at the data's first sample, a rounded rectangle of 6
 ** samples per side at noise 1e-3 had a different cover at some levels for each sample it
 ** was started at. Begun after the longest step between samples (ties: at the sample lowest
-** in x, then y), as the cover chooses where to cut, the runs are the data's own. An open
+** in x, then y: bsfit__closed_start, where a dense section's every k-th sample is read
+** from too), as the cover chooses where to cut, the runs are the data's own. An open
 ** section's scan begins at its first sample. */
 static size_t scan_start(const seg_section *s) {
-  size_t i, best = 0;
-  double longest = -1;
-  if (!s->closed) return 0;
-  for (i = 0; i < s->m; i++) {
-    const double *a = sample(s, i + s->m - 1), *b = sample(s, i), *c = sample(s, best);
-    double step = hypot(b[0] - a[0], b[1] - a[1]);
-    if (step > longest || (step == longest && (b[0] < c[0] || (b[0] == c[0] && b[1] < c[1]))))
-      longest = step, best = i;
-  }
-  return best;
+  return s->closed ? bsfit__closed_start(s->pts, s->m) : 0;
 }
 
 /* len[i] = the most samples from i that one model of `kind` explains (0 when fewer than

@@ -4,10 +4,10 @@
 -- data's first sample: of 390 sections of the sweep's outlines on seeds of their own, each
 -- started at two other random samples, 23 read another noise, 10 another cover at their
 -- true noise and 10 came out of `auto` with other pieces. The scan now begins after the
--- longest step between samples. Exact sections too (the same runs), and sections sparse
--- enough to be segmented whole (at most 500 samples; a denser one is read on every k-th
--- sample, which the start still moves: docs/auto.md, Limits). A sweep (BSFIT_SWEEPS): 1040
--- shifted sections, 8 s.
+-- longest step between samples. Exact sections too (the same runs), and dense ones, read
+-- on every k-th sample: from that same sample now, from the data's first before (of 26
+-- sections of 20 and 100 samples per side, 3 and 26 read another noise from another
+-- start). A sweep (BSFIT_SWEEPS): 1092 shifted sections, 10 s.
 local T = require "tap"
 local bs = require "bsfit"
 local shapes = require "shapes_sharp"
@@ -57,6 +57,24 @@ T.test("a closed section reads the same from any start: noise, cover, auto's pie
     end
   end
   T.ok(n >= 1000, ("%d shifted sections"):format(n))
+end)
+
+T.test("a dense closed section reads the same from any start (its every k-th sample)", function()
+  local uniform = shapes.rng(8765)
+  local n = 0
+  for c in shapes.sweep_cases { pers = { 100 }, rels = { 1e-4, 1e-3 }, unevens = { false },
+                                seed = function(k, per, j) return 78000 + 1000 * k + 10 * per + j end } do
+    local m = #c.pts
+    local s0, cover0, auto0 = read(c.pts, 0, c.sigma)
+    local shift = 1 + math.floor(uniform() * (m - 1))
+    local s, cover, got = read(c.pts, shift, c.sigma)
+    local what = ("%s, %d samples, noise %g, from sample %d"):format(c.name, m, c.rel, shift + 1)
+    T.ok(s == s0, ("%s: noise %.17g, %.17g from sample 1"):format(what, s, s0))
+    T.eq(cover, cover0, what .. ": cover at the true noise")
+    T.eq(got, auto0, what .. ": auto's pieces")
+    if m > 500 then n = n + 1 end
+  end
+  T.ok(n >= 20, ("%d dense sections"):format(n))
 end)
 
 T.run()
