@@ -59,9 +59,12 @@ int bsfit__meet_lines(const bsfit__line *A, const bsfit__line *B, double x[2]);
 ** segmentation's cover (segment_dense.c) and its noise search (segment_sigma.c) */
 #define BSFIT__DENSE_MOST 500
 
-/* segment_dense.c: where the reading of a closed section begins, so that it reads the same
-** from whichever sample its data start at: the sample after the longest step between
-** samples (ties: the one lowest in x, then y) */
+/* segment_cover.c: whether sample i of a closed section of m comes before sample j in the
+** order that picks where a closed section is read from and cut, whichever sample its data
+** start at: after the longer step into it, then lower in x, then in y */
+int bsfit__starts_before(const double *pts, size_t m, size_t i, size_t j);
+
+/* segment_cover.c: the first sample of a closed section in bsfit__starts_before's order */
 size_t bsfit__closed_start(const double *pts, size_t m);
 
 /* segment_dense.c: every k-th of the m samples (k = ceil(m / most)) from sample `first`

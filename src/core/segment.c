@@ -614,6 +614,7 @@ bsfit_err bsfit_segment(const double *pts, size_t m, int dim, const bsfit_segmen
   s.pts = pts;
   s.m = m;
   s.closed = o.closed != 0;
+  s.start = s.closed ? bsfit__closed_start(pts, m) : 0;
   s.a = a;
   s.mom = NULL;
   memset(&mom, 0, sizeof mom);

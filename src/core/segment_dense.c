@@ -19,19 +19,6 @@
 #include <string.h>
 
 /* features_internal.h */
-size_t bsfit__closed_start(const double *pts, size_t m) {
-  size_t i, best = 0;
-  double longest = -1;
-  for (i = 0; i < m; i++) {
-    const double *a = pts + 2 * ((i + m - 1) % m), *b = pts + 2 * i, *c = pts + 2 * best;
-    double dx = b[0] - a[0], dy = b[1] - a[1], step = dx * dx + dy * dy; /* squared */
-    if (step > longest || (step == longest && (b[0] < c[0] || (b[0] == c[0] && b[1] < c[1]))))
-      longest = step, best = i;
-  }
-  return best;
-}
-
-/* features_internal.h */
 double *bsfit__spread(const double *pts, size_t m, size_t first, size_t most,
                       const bsfit_allocator *a, size_t *msub, size_t *k) {
   double *sub;
@@ -132,7 +119,7 @@ static size_t move_pieces(const seg_section *s, const bsfit_piece *q, size_t np,
 size_t bsfit__dense_cover(const seg_section *s, const bsfit_segment_opts *o, bsfit_piece *p,
                           bsfit_err *e, bsfit_status *st) {
   size_t k, msub = 0, np = 0, pbytes = 0, bbytes = 0;
-  size_t first = s->closed ? bsfit__closed_start(s->pts, s->m) : 0;
+  size_t first = s->start;
   double *sub = bsfit__spread(s->pts, s->m, first, BSFIT__DENSE_MOST, s->a, &msub, &k);
   bsfit_piece *q = NULL;
   size_t *bound = NULL; /* and the pieces' places in q, after it */

@@ -234,8 +234,8 @@ void bsfit__cover_fillets(const seg_section *s, bsfit_piece *p, seg_model *md, s
   }
 }
 
-/* Does piece j (not free) still meet the piece after it, k, with the join k has? A free
-** piece, or an open section's last, meets anything. */
+/* Does piece j still meet the piece after it, k, with the join k has? A free piece, or an
+** open section's last, meets anything. */
 static int meets_as_joined(const seg_section *s, const bsfit_piece *p, const seg_model *md,
                            size_t np, size_t j) {
   size_t k = (j + 1) % np;

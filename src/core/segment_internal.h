@@ -23,6 +23,7 @@ typedef struct seg_section {
   const double *pts;
   size_t m;
   int closed;
+  size_t start; /* where its reading begins: bsfit__closed_start when closed, else 0 */
   double tol;  /* a sample fits a model within tol */
   double size; /* the diagonal of the samples' bounding box */
   double unit; /* sigma: tol / tol_sigma (evidence is counted in unit^2) */

@@ -105,8 +105,8 @@ typedef struct refit_mark {
 } refit_mark;
 
 static int worth_refit(const seg_section *s, const refit_mark *t, size_t i, size_t n) {
-  /* starts go round a closed section from its scan start (scan_start): i may have passed
-  ** m - 1 to 0 since the mark */
+  /* starts go round a closed section from s->start: i may have passed m - 1 to 0 since
+  ** the mark */
   size_t dropped = (i + s->m - t->start) % s->m;
   size_t added = dropped + n > t->len ? dropped + n - t->len : 0;
   return 8 * (dropped + added) >= n;
@@ -148,16 +148,16 @@ static size_t seed_run(const seg_section *s, int kind, size_t i, size_t n, const
   if (n > minl && fit_explains(s, kind, i, n, warm, md)) return n;
   tried->len = minl;
   if (seed_misses(s, kind, i, minl)) return 0;
-  /* from the warm start, and on exact data afresh where that fails: a circle warm-started
-  ** from the run before, which bent from a line into the fillet after it, failed on the
-  ** fillet's first samples crowded into a few degrees (a rounded rectangle of 30000 uneven
-  ** exact samples: the fillet's run started a sample late and a line of 3 samples took its
-  ** first, 2e-5 of the size off the outline). Not under noise: there the fresh circles of 4
-  ** samples are arcs across the corners of sparse sections, which the cover then took (the
-  ** sparse sets of test_segment_sigma_sparse: 219 -> 215 of 416 within the floor). */
-  if (n <= minl && warm && fit_explains(s, kind, i, minl, warm, md)) return minl;
-  if (n <= minl && warm && s->noisy) return 0;
-  return fit_explains(s, kind, i, minl, NULL, md) ? minl : 0;
+  warm = n > minl ? NULL : warm;
+  if (fit_explains(s, kind, i, minl, warm, md)) return minl;
+  /* on exact data afresh where the warm start failed: a circle warm-started from the run
+  ** before, which bent from a line into the fillet after it, failed on the fillet's first
+  ** samples crowded into a few degrees (a rounded rectangle of 30000 uneven exact samples:
+  ** the fillet's run started a sample late and a line of 3 samples took its first, 2e-5 of
+  ** the size off the outline). Not under noise: there the fresh circles of 4 samples are
+  ** arcs across the corners of sparse sections, which the cover then took (the sparse sets
+  ** of test_segment_sigma_sparse: 219 -> 215 of 416 within the floor). */
+  return warm && !s->noisy && fit_explains(s, kind, i, minl, NULL, md) ? minl : 0;
 }
 
 /* the most samples a run from i can hold: the section's, or those left before an open end */
@@ -190,28 +190,21 @@ static void extend_arc_runs(const seg_section *s, size_t *len, size_t first) {
   }
 }
 
-/* Where the scan of a closed section's starts begins: each start resumes from the run
-** before it (below), so the runs found depend a little on where the scan began (a fit
-** warm-started from the previous run's model, a run assumed to hold what the run before it
-** held past its first sample): began at the data's first sample, a rounded rectangle of 6
-** samples per side at noise 1e-3 had a different cover at some levels for each sample it
-** was started at. Begun after the longest step between samples (ties: at the sample lowest
-** in x, then y: bsfit__closed_start, where a dense section's every k-th sample is read
-** from too), as the cover chooses where to cut, the runs are the data's own. An open
-** section's scan begins at its first sample. */
-static size_t scan_start(const seg_section *s) {
-  return s->closed ? bsfit__closed_start(s->pts, s->m) : 0;
-}
-
 /* len[i] = the most samples from i that one model of `kind` explains (0 when fewer than
 ** its minimum; a long run may stop short of the most by under an eighth where a refit
 ** was not worth trying). Two pointers: the run from i - 1 less its first sample is a run
 ** from i, so each start resumes where the previous stopped: a short run refitted
 ** (warm-started from the previous model), a long one with the previous model, which
 ** explains it. O(m) fits' worth of work; then, on noisy sections, the arcs' runs that
-** went astray at their start (extend_arc_runs). */
+** went astray at their start (extend_arc_runs).
+** So the runs depend a little on where the scan of a closed section's starts begins (a fit
+** warm-started from the previous run's model, a run taken to hold what the run before it
+** held past its first sample): begun at the data's first sample, a rounded rectangle of 6
+** samples per side at noise 1e-3 had another cover at some levels for each sample its data
+** began at. It begins at s->start (bsfit__closed_start: after the longest step, as the
+** cover chooses where to cut), so the runs are the data's own. */
 bsfit_err bsfit__maximal_runs(const seg_section *s, int kind, size_t *len) {
-  size_t t, prev = 0, minl = s->min_len[kind], first = scan_start(s);
+  size_t t, prev = 0, minl = s->min_len[kind], first = s->start;
   seg_model md;
   refit_mark tried = {first, 0};
   for (t = 0; t < s->m; t++) {

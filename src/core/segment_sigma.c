@@ -197,8 +197,8 @@ static bsfit_err search_below(const double *pts, size_t m, double s0, level_scra
 static bsfit_err spread_sigma(const double *pts, size_t m, int closed, double max_sigma,
                               double *sigma, const bsfit_allocator *a, bsfit_status *st) {
   size_t msub, k;
-  double *sub = bsfit__spread(pts, m, closed ? bsfit__closed_start(pts, m) : 0, BSFIT__DENSE_MOST, a,
-                              &msub, &k);
+  size_t first = closed ? bsfit__closed_start(pts, m) : 0;
+  double *sub = bsfit__spread(pts, m, first, BSFIT__DENSE_MOST, a, &msub, &k);
   bsfit_err e;
   if (!sub) return bsfit__fail(st, BSFIT_ENOMEM, "out of memory for the noise of %zu points", m);
   e = bsfit_segment_sigma(sub, msub, 2, closed, max_sigma, sigma, a, st);
