@@ -104,6 +104,13 @@ BSFIT_API bsfit_err bsfit_weights_spacing(const double *pts, size_t m, int dim, 
 /** Smallest weight bsfit_weights_spacing returns. */
 #define BSFIT_GEOM_SPACING_FLOOR 1e-3
 
+/** The longest step between consecutive points (for closed data the step from the last
+** point back to the first too): how far the data leave a stretch unsampled.
+** @param[out] h  the longest step (0 when all points coincide).
+** @return BSFIT_OK or a common code. */
+BSFIT_API bsfit_err bsfit_geom_longest_step(const double *pts, size_t m, int dim, int closed,
+                                            double *h, bsfit_status *st);
+
 /** Orthogonal projection of P onto the line origin + t dir (the tangent correction,
 ** docs/method.md §9-10: control points P_1, P_2 moved onto the tangent line through Q_0).
 ** @param[in]  P, origin, dir  dim doubles each; dir need not be normalised.

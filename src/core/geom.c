@@ -316,6 +316,25 @@ bsfit_err bsfit_weights_spacing(const double *pts, size_t m, int dim, int closed
   return bsfit__ok(st);
 }
 
+/* bsfit_geom.h. Squared steps, one root: the coordinates are within 1e100 (check_seq), so
+** their squares are far from overflow. */
+bsfit_err bsfit_geom_longest_step(const double *pts, size_t m, int dim, int closed, double *h,
+                                  bsfit_status *st) {
+  size_t k;
+  double most = 0.0;
+  bsfit_err e = check_seq(pts, m, dim, h, "h", st);
+  if (e != BSFIT_OK) return e;
+  for (k = closed ? 0 : 1; k < m; k++) {
+    const double *a = point_at(pts, dim, k == 0 ? m - 1 : k - 1), *b = point_at(pts, dim, k);
+    double s = 0.0;
+    int d;
+    for (d = 0; d < dim; d++) s += (b[d] - a[d]) * (b[d] - a[d]);
+    if (s > most) most = s;
+  }
+  *h = sqrt(most);
+  return bsfit__ok(st);
+}
+
 /* }==================================================================== */
 
 /* {====================================================================

@@ -7,6 +7,7 @@
 **   bs.geom.angles(P [, {closed = true}])                        --> Vector (degrees)
 **   bs.geom.inflections(P [, {closed = true}])                   --> integer
 **   bs.geom.noise_sigma(P [, {closed = true}])                   --> sigma
+**   bs.geom.longest_step(P [, {closed = true}])                  --> the longest step
 **   bs.geom.corners(P [, {closed = true, sigma =, min_angle =, scale =}])
 **                                       --> table of 1-based indices, Vector of turns (degrees)
 **   bs.geom.project(P, origin, dir)      --> x, y[, z]   (points given as tables)
@@ -92,6 +93,17 @@ static int geom_inflections(lua_State *L) {
   bsfit_status st;
   bsfit_err e = bsfit_geom_inflections(P->xy, P->n, (int)P->dim, closed, &count, &st);
   lua_pushinteger(L, (lua_Integer)count);
+  return bsfit__lua_result(L, e, &st, 1, 1);
+}
+
+/* the longest step between consecutive points, the closing one too when closed */
+static int geom_longest_step(lua_State *L) {
+  int t, closed;
+  bsfit_points_ud *P = kernel_args(L, opts_closed, &t, &closed);
+  double h = 0.0;
+  bsfit_status st;
+  bsfit_err e = bsfit_geom_longest_step(P->xy, P->n, (int)P->dim, closed, &h, &st);
+  lua_pushnumber(L, h);
   return bsfit__lua_result(L, e, &st, 1, 1);
 }
 
@@ -218,6 +230,7 @@ static int geom_line_distance(lua_State *L) {
 static const luaL_Reg geom_funcs[] = {
   {"circumradius", geom_circumradius}, {"angles", geom_angles},
   {"inflections", geom_inflections},   {"noise_sigma", geom_noise_sigma},
+  {"longest_step", geom_longest_step},
   {"corners", geom_corners},           {"project", geom_project},
   {"line_distance", geom_line_distance}, {NULL, NULL}};
 

@@ -323,6 +323,35 @@ T.test("noise_sigma: ~0 on an exact circle, sigma within 20% on a noisy one", fu
   T.fails("EDEGENERATE", bs.geom.noise_sigma, {{1, 1}, {1, 1}, {1, 1}, {1, 1}, {1, 1}, {1, 1}, {1, 1}})
 end)
 
+-- bs.geom.longest_step against the steps taken one by one in Lua, on random sequences of
+-- 2D and 3D points, open and closed (the closing step counts only when closed)
+T.test("longest_step: the longest of the steps, the closing one when closed", function()
+  math.randomseed(20261207)
+  for case = 1, 200 do
+    local dim, m, t = case % 2 == 0 and 3 or 2, 3 + math.random(60), {}
+    for i = 1, m do
+      t[i] = {}
+      for d = 1, dim do t[i][d] = (math.random() - 0.5) * 10 ^ math.random(-3, 3) end
+    end
+    local function step(i, j)
+      local s = 0
+      for d = 1, dim do s = s + (t[j][d] - t[i][d]) ^ 2 end
+      return math.sqrt(s)
+    end
+    local open = 0
+    for i = 2, m do open = math.max(open, step(i - 1, i)) end
+    local closed = math.max(open, step(m, 1))
+    local P = bs.points.new(t)
+    T.ok(math.abs(bs.geom.longest_step(P) - closed) <= 1e-14 * closed, "closed, case " .. case)
+    T.ok(math.abs(bs.geom.longest_step(P, { closed = false }) - open) <= 1e-14 * open, "open, case " .. case)
+  end
+  T.eq(bs.geom.longest_step({ {1, 1}, {1, 1}, {1, 1} }), 0, "coincident points")
+  T.raises(argerr(1, "longest_step", "m = 2 points, at least 3 needed"),
+           function() return bs.geom.longest_step({ {0, 0}, {1, 1} }) end)
+  T.raises(argerr(1, "longest_step", "point 3 has a non%-finite coordinate"),
+           function() return bs.geom.longest_step({ {0, 0}, {1, 0}, {0 / 0, 1} }) end)
+end)
+
 T.test("corners: a square has its 4 corners (turn 90), a circle none", function()
   for _, sigma in ipairs{0, 0.02} do
     math.randomseed(7)

@@ -139,7 +139,7 @@ end
 -- s: the noise read off the pieces, sigma: the windows'.
 local function screen(P, pieces, s, sigma, lenient)
   local held, weak, strong = 0, {}, 0
-  local reach = lenient and BRIDGE_REACH * sharp.longest_step(P) or nil
+  local reach = lenient and BRIDGE_REACH * bs.geom.longest_step(P) or nil
   for i, p in ipairs(pieces) do
     local q = pieces[(i - 2) % #pieces + 1]
     if p.kind ~= "free" then held = held + p.count end

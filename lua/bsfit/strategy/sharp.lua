@@ -470,7 +470,7 @@ local function closing_length(P, pieces)
 end
 
 -- the longest step between the samples of piece p (of a section of m samples)
-local function longest_step(P, m, p)
+local function piece_longest_step(P, m, p)
   local h = 0
   for k = 0, p.count - 2 do
     local x1, y1 = P:get((p.first - 1 + k) % m + 1)
@@ -504,8 +504,8 @@ function M.closure_unsampled(P, pieces)
     i = i % n + 1
   end
   local A, B = pieces[ia], pieces[ib]
-  local run_a = dist({ P:get(m) }, A["end"]) / longest_step(P, m, A)
-  local run_b = dist(B.start, { P:get(1) }) / longest_step(P, m, B)
+  local run_a = dist({ P:get(m) }, A["end"]) / piece_longest_step(P, m, A)
+  local run_b = dist(B.start, { P:get(1) }) / piece_longest_step(P, m, B)
   return run_a > CLOSURE_UNSAMPLED and run_b > CLOSURE_UNSAMPLED
 end
 
@@ -599,19 +599,10 @@ end
 -- A corner farther from the samples on either side of it than the longest step of the
 -- section (two noisy sides meeting at a spike far out: a keyhole of 4 uneven samples per
 -- side at noise 1e-2 had its last two sides meet 5 units below it) is not what the samples
--- show. Returns a message, or nil.
--- The longest step between consecutive samples of P (2D), the closing one too.
-function M.longest_step(P)
-  local longest, qx, qy = 0, P:get(#P)
-  for i = 1, #P do
-    local x, y = P:get(i)
-    longest, qx, qy = math.max(longest, math.sqrt((x - qx) ^ 2 + (y - qy) ^ 2)), x, y
-  end
-  return longest
-end
-
+-- show. Returns a message, or nil. (The longest step is the C kernel's: a loop in Lua
+-- took 16 ms of a 10^5-sample section's 60.)
 function M.far_corner(P, pieces)
-  local m, longest = #P, M.longest_step(P)
+  local m, longest = #P, bs.geom.longest_step(P)
   local function to(x, i) -- the distance from {x, y} to sample i
     local px, py = P:get(i)
     return math.sqrt((x[1] - px) ^ 2 + (x[2] - py) ^ 2)
