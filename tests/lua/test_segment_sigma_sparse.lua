@@ -30,7 +30,7 @@ end
 -- section whose only match was such a level now has none; within and far off unchanged)
 -- (no level on 30 while the runs' scan began at the data's first sample: begun at random
 -- samples, 35 or 36, read 275 or 276 and within 219; begun after the longest step, as now,
--- 34, 277 and 220 from any: segment_runs.c, scan_start)
+-- 34, 277 and 220 from any: bsfit__closed_start)
 local FLOOR = { n = 416, within = 220, gross = 70, read = 277, none = 34 }
 if shapes.thinned then FLOOR = { n = 138, within = 69, gross = 26, read = 94, none = 14 } end
 
