@@ -500,6 +500,7 @@ static size_t finish_pieces(const seg_section *s, bsfit_piece *p, seg_model *md,
   rebalance(s, p, md, np);
   bsfit__cover_fillets(s, p, md, np);
   np = bsfit__split_corner_arcs(s, p, md, np);
+  np = bsfit__split_bridges(s, p, md, np);
   if (np == 1 && s->closed && p[0].kind == ARC &&
       goes_round(s, &p[0], &md[0])) { /* a whole circle */
     bsfit__model_foot(&md[0], sample(s, p[0].first), p[0].start, p[0].t_start);

@@ -199,4 +199,8 @@ int bsfit__segment_meet(const seg_section *s, const bsfit_piece *A, const seg_mo
 ** p and md have room for np more; returns the new count */
 size_t bsfit__split_corner_arcs(const seg_section *s, bsfit_piece *p, seg_model *md, size_t np);
 
+/* segment_corner_arcs.c: under noise, two pieces that do not meet get the line of a side
+** between them from their end samples (p, md have room for np more); returns the count */
+size_t bsfit__split_bridges(const seg_section *s, bsfit_piece *p, seg_model *md, size_t np);
+
 #endif

@@ -102,5 +102,3 @@ T.test("the noise search's level step is exposed: 10^(1/4)", function()
   T.ok(math.abs(bs.geom.SEGMENT_SIGMA_STEP - 10 ^ 0.25) <= 1e-15,
        ("SEGMENT_SIGMA_STEP %.17g"):format(bs.geom.SEGMENT_SIGMA_STEP))
 end)
-
-T.run()

@@ -59,5 +59,3 @@ T.test("a closed section's one arc is whole exactly when its closing step is sho
   end
   T.ok(cases == 5 * 6 * 6, "cases " .. cases)
 end)
-
-T.run()

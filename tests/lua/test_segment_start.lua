@@ -76,5 +76,3 @@ T.test("a dense closed section reads the same from any start (its every k-th sam
   end
   T.ok(n >= 20, ("%d dense sections"):format(n))
 end)
-
-T.run()

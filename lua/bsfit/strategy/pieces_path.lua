@@ -57,7 +57,8 @@ local function trusted_pieces(P, ctx, t)
   else
     local why, found
     pieces, why, found = noisy.find(Q, ctx.sigma, common.closed(ctx))
-    ctx.sharp_rejected = why
+    ctx.sharp_rejected, ctx.sharp_disagreed = why, found.disagreed
+    ctx.sharp_trusted = { points = Q, idx = idx }
     if found.candidate then
       ctx.sharp_candidate = { sigma = found.candidate.sigma,
         pieces = sharp.spread(found.candidate.pieces, idx, #P, common.closed(ctx)) }
@@ -135,26 +136,40 @@ local MISFIT = 6
 
 -- The noise to try the pieces at, the unit to judge the smooth curve in, and whether to
 -- try them leniently; nil when no swap is asked. The sharp_* fields are set by the segment
--- step's untrusted path only (not when it was replaced, nor on the trusted points' path).
+-- step (not when it was replaced).
 local function misfit_level(ctx)
   local s = ctx.sharp_disagreed
   if s and s > 0 then return s, ctx.sigma, false end
   local cand = ctx.sharp_candidate
-  if common.trusted(ctx) or not (cand and ctx.sharp_rejected and cand.sigma > 0) then
-    return nil
-  end
+  if not (cand and ctx.sharp_rejected and cand.sigma > 0) then return nil end
   return cand.sigma, cand.sigma, true
 end
 
+-- The largest of the smooth curve's distances d to the points the pieces are read from:
+-- every point, or the trusted ones t (t.isout marks the others).
+local function worst_distance(d, t)
+  if not t then return d:max() end
+  local worst = 0
+  for i = 1, #d do
+    if not t.isout[i] then worst = math.max(worst, d:get(i)) end
+  end
+  return worst
+end
+
+-- On the trusted points' path the pieces are read off them alone (ctx.sharp_trusted) and
+-- given back on every point, as the segment step does: with or without down-weighted
+-- outliers among them, a section swaps to the same pieces and the same curve.
 local function pieces_for_misfit(P, ctx)
   if not M.allowed(ctx) or ctx.distances_of ~= ctx.fit then return nil end
   local s, unit, lenient = misfit_level(ctx)
-  local worst = ctx.distances:max()
+  local t = ctx.sharp_trusted
+  local worst = worst_distance(ctx.distances, t and common.trusted(ctx))
   if not (s and worst > MISFIT * unit) then return nil end
-  local pieces, _, found = noisy.at(P, s, ctx.sigma, common.closed(ctx), lenient)
+  local pieces, _, found = noisy.at(t and t.points or P, s, ctx.sigma, common.closed(ctx), lenient)
   if not pieces or not (found.max < worst) then return nil end
   common.warn(ctx, ("the smooth curve missed a sample by %.3g sigma: fitted the lines and arcs at "
     .. "noise %.3g (%s)"):format(worst / unit, s, ctx.sharp_rejected))
+  if t then pieces = sharp.spread(pieces, t.idx, #P, common.closed(ctx)) end
   ctx.segment, ctx.segment_sigma, ctx.sharp_rejected = pieces, s, nil
   ctx.corners = sharp.corner_samples(P, pieces)
   return found.curve
