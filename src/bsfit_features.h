@@ -117,7 +117,9 @@ BSFIT_API bsfit_err bsfit_segment(const double *pts, size_t m, int dim,
 ** quartile, over its value for pure noise, 0.3186 sigma); the first whose pooled residual
 ** is at most 1.2 times the level gives the estimate. When none does and some level's
 ** models left a robust residual below the start (the first guess was above the noise),
-** the levels below the start, down to a sixteenth of it: the first that matches. Sparse samples of a contour that bends between them make window-based
+** the levels below the start, down to a sixteenth of it: the first that matches; those
+** levels are tried first, too, when a level above matched at more than 20 times the least
+** robust residual of the levels before it (kept when none below matches). Sparse samples of a contour that bends between them make window-based
 ** estimates (bsfit_noise_sigma) many times too large; this one is not, where lines and
 ** arcs hold the samples. A section of more than 500 samples is read on every k-th sample
 ** (k = ceil(m / 500)): each keeps its noise, and the search costs the same from 500
@@ -133,6 +135,16 @@ BSFIT_API bsfit_err bsfit_segment(const double *pts, size_t m, int dim,
 BSFIT_API bsfit_err bsfit_segment_sigma(const double *pts, size_t m, int dim, int closed,
                                         double max_sigma, double *sigma,
                                         const bsfit_allocator *a, bsfit_status *st);
+
+/** Where the segmentation reads a closed 2D section from, whichever sample its data start
+** at: the sample after its longest step (the closing one included), ties broken by the
+** lowest x, then y. bsfit_segment, bsfit_segment_sigma and their every-k-th subsamples of
+** large sections begin there; a caller that reads a closed section through a subsample of
+** its own begins there too, and reads the same from any start. O(m).
+** @param[out] first its 0-based index
+** @return BSFIT_OK, BSFIT_EDIM (dim != 2), BSFIT_ETOOFEW (m == 0), BSFIT_ENONFINITE. */
+BSFIT_API bsfit_err bsfit_segment_start(const double *pts, size_t m, int dim, size_t *first,
+                                        bsfit_status *st);
 
 /** A straight segment from a to b as a degree-3 curve on [0, 1] with four collinear,
 ** evenly spaced control points (its speed is constant). dim 1..4. */

@@ -203,6 +203,18 @@ int bsfit__starts_before(const double *pts, size_t m, size_t i, size_t j) {
   return ib[0] < jb[0] || (ib[0] == jb[0] && ib[1] < jb[1]);
 }
 
+/* bsfit_features.h */
+bsfit_err bsfit_segment_start(const double *pts, size_t m, int dim, size_t *first,
+                              bsfit_status *st) {
+  if (first) *first = 0;
+  if (first == NULL) return bsfit__fail(st, BSFIT_EINVAL, "segmentation start: first required");
+  if (dim != 2) return bsfit__fail(st, BSFIT_EDIM, "segmentation start needs 2D points, got dim %d", dim);
+  if (pts == NULL || m == 0) return bsfit__fail(st, BSFIT_ETOOFEW, "segmentation start needs a point");
+  if (!bsfit__all_finite(pts, 2 * m)) return bsfit__fail(st, BSFIT_ENONFINITE, "points contain NaN or Inf");
+  *first = bsfit__closed_start(pts, m);
+  return bsfit__ok(st);
+}
+
 /* features_internal.h */
 size_t bsfit__closed_start(const double *pts, size_t m) {
   size_t i, best = 0;

@@ -18,6 +18,8 @@
 ** lines and arcs, read off their own residuals (levels up to `max`; 0: 5% of the size;
 ** at most 500 evenly spread samples are read).
 **   bs.geom.SEGMENT_SIGMA_STEP: the step between the levels of that search (10^(1/4)).
+**   bs.geom.segment_start(P) --> the 1-based index a closed section is read from, whichever
+** sample its data start at (after its longest step; ties: lowest x, then y).
 */
 #include "laux.h"
 
@@ -136,6 +138,21 @@ static int features_segment_sigma(lua_State *L) {
   e = bsfit_segment_sigma(P->xy, P->n, 2, closed, mx, &sigma, &a, &st);
   if (e != BSFIT_OK) return bsfit__lua_result(L, e, &st, 0, 1);
   lua_pushnumber(L, sigma);
+  return 1;
+}
+
+/* bs.geom.segment_start(P) --> the 1-based index a closed section is read from */
+static int features_segment_start(lua_State *L) {
+  bsfit_points_ud *P = bsfit__lua_topoints(L, 1);
+  size_t first = 0;
+  bsfit_status st;
+  bsfit_err e;
+  luaL_argcheck(L, P->dim == 2, 1, "2D points expected");
+  luaL_argcheck(L, P->n >= 1, 1, "at least 1 point expected");
+  bsfit__lua_checkfinite(L, 1, P);
+  e = bsfit_segment_start(P->xy, P->n, 2, &first, &st);
+  if (e != BSFIT_OK) return bsfit__lua_result(L, e, &st, 0, 1);
+  lua_pushinteger(L, (lua_Integer)first + 1);
   return 1;
 }
 
@@ -310,6 +327,8 @@ void bsfit__lua_lib_features(lua_State *L) {
     lua_setfield(L, -2, "segment");
     lua_pushcfunction(L, features_segment_sigma);
     lua_setfield(L, -2, "segment_sigma");
+    lua_pushcfunction(L, features_segment_start);
+    lua_setfield(L, -2, "segment_start");
     lua_pushnumber(L, BSFIT_SEGMENT_SIGMA_STEP);
     lua_setfield(L, -2, "SEGMENT_SIGMA_STEP");
     lua_pushcfunction(L, features_self_intersections);

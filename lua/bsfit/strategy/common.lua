@@ -791,12 +791,22 @@ end
 -- all three are local or statistical, and the fits themselves still use every point.
 local SUBSAMPLE = 5000
 
--- every s-th point of P (s = ceil(#P / SUBSAMPLE)), or nil when P is not larger
-function M.thinned(P)
+-- every s-th point of P (s = ceil(#P / SUBSAMPLE)) from point `first` (1 when nil) round
+-- to the one before it, or nil when P is not larger
+function M.thinned(P, first)
   if #P <= SUBSAMPLE then return nil end
-  local t = {}
-  for i = 1, #P, math.ceil(#P / SUBSAMPLE) do t[#t + 1] = { P:get(i) } end
+  local t, m, k = {}, #P, math.ceil(#P / SUBSAMPLE)
+  first = first or 1
+  for j = 0, m - 1, k do t[#t + 1] = { P:get((first - 1 + j) % m + 1) } end
   return bs.points.new(t)
+end
+
+-- The every-k-th subsample of a closed 2D section, from where the segmentation reads it
+-- (bs.geom.segment_start), so what is read off it does not depend on the sample the data
+-- start at; of any other, from its first point (M.thinned). nil when P is small.
+function M.thinned_closed(P, closed)
+  if #P <= SUBSAMPLE then return nil end
+  return M.thinned(P, closed and P:dim() == 2 and bs.geom.segment_start(P) or 1)
 end
 
 -- ctx.sub = {P = Points, stride = s, u = its parameters (set later)} when #P > SUBSAMPLE
