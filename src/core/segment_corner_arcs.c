@@ -55,13 +55,15 @@ static int still_piece(const seg_section *s, bsfit_piece *q, seg_model *mq) {
   return q->max <= s->tol;
 }
 
-/* a line of n samples from first, within the tolerance and of 3 distinct positions */
-static int line_of(const seg_section *s, size_t first, size_t n, bsfit_piece *l, seg_model *ml) {
+/* a line of n >= min_len samples from first, within the tolerance and of `positions`
+** distinct positions (a run's line: min_len) */
+static int line_of(const seg_section *s, size_t first, size_t n, size_t positions, bsfit_piece *l,
+                   seg_model *ml) {
   memset(l, 0, sizeof *l);
   l->kind = LINE;
   l->first = first % s->m;
   l->count = n;
-  if (n < s->min_len[LINE] || distinct(s, LINE, first, n) < s->min_len[LINE]) return 0;
+  if (n < s->min_len[LINE] || distinct(s, LINE, first, n) < positions) return 0;
   ml->kind = LINE;
   bsfit__segment_refit(s, l, ml);
   return l->max <= s->tol;
@@ -87,7 +89,8 @@ static void best_split(const seg_section *s, const bsfit_piece *A, const seg_mod
   if (B) t.b = *B, t.mb = *mb, t.b.first = (B->first + kb) % s->m, t.b.count -= kb;
   if ((ka && !still_piece(s, &t.a, &t.ma)) || (kb && !still_piece(s, &t.b, &t.mb))) return;
   for (k = s->min_len[LINE]; k + s->min_len[LINE] <= n; k++) {
-    if (!line_of(s, first, k, &t.l1, &t.m1) || !line_of(s, first + k, n - k, &t.l2, &t.m2))
+    if (!line_of(s, first, k, s->min_len[LINE], &t.l1, &t.m1) ||
+        !line_of(s, first + k, n - k, s->min_len[LINE], &t.l2, &t.m2))
       continue;
     t.rss = fitted_rss(&t.l1) + fitted_rss(&t.l2) + fitted_rss(&t.a) + fitted_rss(&t.b);
     if (t.rss < best->rss && split_meets(s, &t)) *best = t;
@@ -152,22 +155,6 @@ typedef struct side_split {
   double rss;
 } side_split;
 
-/* the side's line: n >= 3 samples within the tolerance, of 2 distinct positions (not the
-** 3 of a run: a side 16 sigma long holds 4 samples within 2.5 tolerances; its corners with
-** the lines either side fix it. Asking 3, of test_segment_sides' 400 notched polygons at
-** their true noise 194 were read as their own lines (252 now), 184 kept a bridge (112);
-** through auto 118 of 300 were within the floor (149)) */
-static int side_line(const seg_section *s, size_t first, size_t n, bsfit_piece *l, seg_model *ml) {
-  memset(l, 0, sizeof *l);
-  l->kind = LINE;
-  l->first = first % s->m;
-  l->count = n;
-  if (n < s->min_len[LINE] || distinct(s, LINE, first, n) < 2) return 0;
-  ml->kind = LINE;
-  bsfit__segment_refit(s, l, ml);
-  return l->max <= s->tol;
-}
-
 /* Does point x lie ahead of point o along the samples of piece q, from its first to its last? */
 static int ahead(const seg_section *s, const bsfit_piece *q, const double *o, const double *x) {
   const double *f = sample(s, q->first), *l = sample(s, q->first + q->count - 1);
@@ -198,18 +185,35 @@ static int side_meets(const seg_section *s, const side_split *t, const side_arou
   return ahead(s, &t->b, x2, y);
 }
 
-/* The best side of A's last ka and B's first kb samples; its residual HUGE_VAL when none */
-static void side_of(const seg_section *s, const bsfit_piece *A, const seg_model *ma,
-                    const bsfit_piece *B, const seg_model *mb, const side_around *r, size_t ka,
-                    size_t kb, side_split *best) {
+/* what a line keeps once a side takes k of its samples at its end (`at_end`) or start */
+typedef struct kept {
+  bsfit_piece p;
+  seg_model md;
+  int ok; /* still a piece of its kind, within the tolerance */
+} kept;
+
+static void keep(const seg_section *s, const bsfit_piece *q, const seg_model *mq, size_t k,
+                 int at_end, kept *out) {
+  out->p = *q, out->md = *mq;
+  out->p.count -= k;
+  if (!at_end) out->p.first = (q->first + k) % s->m;
+  out->ok = out->p.count > 0 && still_piece(s, &out->p, &out->md);
+}
+
+/* The side of A's last ka and B's first kb samples (what they keep: a, b), when better than
+** *best */
+static void side_of(const seg_section *s, const bsfit_piece *A, const kept *a, const kept *b,
+                    size_t ka, size_t kb, const side_around *r, side_split *best) {
   side_split t;
+  if (!a->ok || !b->ok) return;
   memset(&t, 0, sizeof t);
-  t.a = *A, t.ma = *ma, t.a.count -= ka;
-  t.b = *B, t.mb = *mb, t.b.first = (B->first + kb) % s->m, t.b.count -= kb;
-  if (t.a.count == 0 || t.b.count == 0 || !still_piece(s, &t.a, &t.ma) ||
-      !still_piece(s, &t.b, &t.mb))
-    return;
-  if (!side_line(s, A->first + A->count - ka, ka + kb, &t.c, &t.mc)) return;
+  t.a = a->p, t.ma = a->md, t.b = b->p, t.mb = b->md;
+  /* the side's line needs only 2 distinct positions, not a run's 3: a side 16 sigma long
+  ** holds 4 samples within 2.5 tolerances, and its corners with the lines either side fix
+  ** it. Asking 3, of test_segment_sides' 400 notched polygons at their true noise 194 were
+  ** read as their own lines (252 now), 184 kept a bridge (112); through auto 118 of 300
+  ** were within the floor (149) */
+  if (!line_of(s, A->first + A->count - ka, ka + kb, 2, &t.c, &t.mc)) return;
   t.rss = fitted_rss(&t.a) + fitted_rss(&t.c) + fitted_rss(&t.b);
   if (t.rss < best->rss && side_meets(s, &t, r)) *best = t;
 }
@@ -233,6 +237,7 @@ size_t bsfit__split_bridges(const seg_section *s, bsfit_piece *p, seg_model *md,
     bsfit_piece *A = &p[i], *B = &p[ib];
     side_split best;
     side_around r;
+    kept a[SIDE_TAKE + 1], b[SIDE_TAKE + 1];
     double x[2];
     if ((!s->closed && ib == 0) || A->kind != LINE || B->kind != LINE ||
         B->first != (A->first + A->count) % s->m || bsfit__segment_meet(s, A, &md[i], B, &md[ib], x))
@@ -242,10 +247,14 @@ size_t bsfit__split_bridges(const seg_section *s, bsfit_piece *p, seg_model *md,
       r.before = around(s, p, np, i, -1, &ja), r.after = around(s, p, np, ib, 1, &jb);
       r.mbefore = &md[ja], r.mafter = &md[jb];
     }
+    for (ka = 0; ka <= SIDE_TAKE; ka++) { /* each line's part left, refitted once */
+      keep(s, A, &md[i], ka < A->count ? ka : A->count, 1, &a[ka]);
+      keep(s, B, &md[ib], ka < B->count ? ka : B->count, 0, &b[ka]);
+    }
     best.rss = HUGE_VAL;
-    for (ka = 0; ka <= SIDE_TAKE && ka < A->count; ka++)
-      for (kb = 0; kb <= SIDE_TAKE && kb < B->count; kb++)
-        if (ka + kb >= s->min_len[LINE]) side_of(s, A, &md[i], B, &md[ib], &r, ka, kb, &best);
+    for (ka = 0; ka <= SIDE_TAKE; ka++)
+      for (kb = 0; kb <= SIDE_TAKE; kb++)
+        if (ka + kb >= s->min_len[LINE]) side_of(s, A, &a[ka], &b[kb], ka, kb, &r, &best);
     if (!(best.rss < fitted_rss(A) + fitted_rss(B))) continue;
     *A = best.a, md[i] = best.ma;
     *B = best.b, md[ib] = best.mb;

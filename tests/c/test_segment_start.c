@@ -82,6 +82,24 @@ static void test_same_point_from_every_start(void **state) {
   }
 }
 
+/* Exact ties: a unit square's four steps are equal and two corners share the lowest x, so
+** y decides: (0, 0) from every start; a rectangle's two long steps tie, and x decides. */
+static void test_ties(void **state) {
+  double square[8] = {1, 1, 0, 1, 0, 0, 1, 0}, rect[8] = {0, 2, 0, 0, 1, 0, 1, 2}, q[8];
+  const double *shapes[2] = {square, rect}, want[2][2] = {{0, 0}, {0, 0}};
+  int k;
+  size_t shift, i, f;
+  bsfit_status st;
+  (void)state;
+  for (k = 0; k < 2; k++)
+    for (shift = 0; shift < 4; shift++) {
+      for (i = 0; i < 4; i++) memcpy(q + 2 * i, shapes[k] + 2 * ((i + shift) % 4), 2 * sizeof *q);
+      assert_int_equal(bsfit_segment_start(q, 4, 2, &f, &st), BSFIT_OK);
+      assert_float_equal(q[2 * f], want[k][0], 0.0);
+      assert_float_equal(q[2 * f + 1], want[k][1], 0.0);
+    }
+}
+
 static void test_errors(void **state) {
   double pts[6] = {0, 0, 1, 0, 0, 1};
   size_t first = 7;
@@ -103,6 +121,7 @@ static void test_errors(void **state) {
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_same_point_from_every_start),
+      cmocka_unit_test(test_ties),
       cmocka_unit_test(test_errors),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);

@@ -46,19 +46,21 @@ end
 -- The pieces of the trusted points t.points alone (down-weighted points are no samples of
 -- a line or an arc), given back on all of P (sharp.spread); the free runs are then fitted
 -- to every point with its weight. {} when the trusted points make no pieces.
+-- idx[j]: the index among all of the j-th trusted point of t, found when asked (spread asks
+-- once per piece; a table of every index was a loop over all points in Lua)
+local function trusted_indices(t)
+  return setmetatable({}, { __index = function(_, j) return common.trusted_index(t, j) end })
+end
+
 local function trusted_pieces(P, ctx, t)
   if not t.points or t.n < 6 then return {} end
-  local Q = t.points
-  -- idx[j]: the index among all of the j-th trusted point, found when asked (spread asks
-  -- once per piece; a table of every index was a loop over all points in Lua)
-  local idx = setmetatable({}, { __index = function(_, j) return common.trusted_index(t, j) end })
+  local Q, idx = t.points, trusted_indices(t)
   local pieces = exact_pieces(Q, ctx, common.thinned(Q))
   if pieces then ctx.segment_sigma = 0
   else
     local why, found
     pieces, why, found = noisy.find(Q, ctx.sigma, common.closed(ctx))
     ctx.sharp_rejected, ctx.sharp_disagreed = why, found.disagreed
-    ctx.sharp_trusted = { points = Q, idx = idx }
     if found.candidate then
       ctx.sharp_candidate = { sigma = found.candidate.sigma,
         pieces = sharp.spread(found.candidate.pieces, idx, #P, common.closed(ctx)) }
@@ -145,31 +147,22 @@ local function misfit_level(ctx)
   return cand.sigma, cand.sigma, true
 end
 
--- The largest of the smooth curve's distances d to the points the pieces are read from:
--- every point, or the trusted ones t (t.isout marks the others).
-local function worst_distance(d, t)
-  if not t then return d:max() end
-  local worst = 0
-  for i = 1, #d do
-    if not t.isout[i] then worst = math.max(worst, d:get(i)) end
-  end
-  return worst
-end
-
--- On the trusted points' path the pieces are read off them alone (ctx.sharp_trusted) and
--- given back on every point, as the segment step does: with or without down-weighted
--- outliers among them, a section swaps to the same pieces and the same curve.
+-- On the trusted points' path (the segment step read the pieces off them alone) the
+-- smooth curve is judged at them, and the pieces are read off them and given back on every
+-- point, as the segment step does: with or without down-weighted outliers among them, a
+-- section swaps to the same pieces and the same curve.
 local function pieces_for_misfit(P, ctx)
   if not M.allowed(ctx) or ctx.distances_of ~= ctx.fit then return nil end
   local s, unit, lenient = misfit_level(ctx)
-  local t = ctx.sharp_trusted
-  local worst = worst_distance(ctx.distances, t and common.trusted(ctx))
-  if not (s and worst > MISFIT * unit) then return nil end
+  if not s then return nil end
+  local t = common.trusted(ctx)
+  local worst = t and common.trusted_max(ctx.distances, t, 1) or ctx.distances:max()
+  if not (worst > MISFIT * unit) then return nil end
   local pieces, _, found = noisy.at(t and t.points or P, s, ctx.sigma, common.closed(ctx), lenient)
   if not pieces or not (found.max < worst) then return nil end
   common.warn(ctx, ("the smooth curve missed a sample by %.3g sigma: fitted the lines and arcs at "
     .. "noise %.3g (%s)"):format(worst / unit, s, ctx.sharp_rejected))
-  if t then pieces = sharp.spread(pieces, t.idx, #P, common.closed(ctx)) end
+  if t then pieces = sharp.spread(pieces, trusted_indices(t), #P, common.closed(ctx)) end
   ctx.segment, ctx.segment_sigma, ctx.sharp_rejected = pieces, s, nil
   ctx.corners = sharp.corner_samples(P, pieces)
   return found.curve
