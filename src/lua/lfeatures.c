@@ -73,6 +73,15 @@ static void push_piece(lua_State *L, const bsfit_piece *p, size_t m) {
   lua_setfield(L, -2, "max");
 }
 
+/* argument 1, a section: at least `least` finite 2D points */
+static void check_section(lua_State *L, const bsfit_points_ud *P, size_t least) {
+  luaL_argcheck(L, P->dim == 2, 1, "2D points expected");
+  if (P->n < least)
+    luaL_argerror(L, 1, lua_pushfstring(L, "at least %d point%s expected", (int)least,
+                                        least == 1 ? "" : "s"));
+  bsfit__lua_checkfinite(L, 1, P);
+}
+
 /* bs.geom.segment(P [, opts]) */
 static int features_segment(lua_State *L) {
   static const char *const names[] = {"closed",  "sigma",   "tol_sigma",  "exact",
@@ -103,9 +112,7 @@ static int features_segment(lua_State *L) {
   luaL_argcheck(L, o.exact > 0 && o.exact < 1, 2, "field 'exact' must be in (0, 1)");
   luaL_argcheck(L, ml >= 2 && ml <= 1000000, 2, "field 'min_line' must be >= 2");
   luaL_argcheck(L, ma >= 3 && ma <= 1000000, 2, "field 'min_arc' must be >= 3");
-  luaL_argcheck(L, P->dim == 2, 1, "2D points expected");
-  luaL_argcheck(L, P->n >= 3, 1, "at least 3 points expected");
-  bsfit__lua_checkfinite(L, 1, P);
+  check_section(L, P, 3);
   o.min_line = (size_t)ml;
   o.min_arc = (size_t)ma;
   cap = 2 * P->n + 2;
@@ -131,9 +138,7 @@ static int features_segment_sigma(lua_State *L) {
   double sigma = 0;
   bsfit_status st;
   bsfit_err e;
-  luaL_argcheck(L, P->dim == 2, 1, "2D points expected");
-  luaL_argcheck(L, P->n >= 3, 1, "at least 3 points expected");
-  bsfit__lua_checkfinite(L, 1, P);
+  check_section(L, P, 3);
   luaL_argcheck(L, mx >= 0, 2, "field 'max' must be >= 0");
   e = bsfit_segment_sigma(P->xy, P->n, 2, closed, mx, &sigma, &a, &st);
   if (e != BSFIT_OK) return bsfit__lua_result(L, e, &st, 0, 1);
@@ -147,9 +152,7 @@ static int features_segment_start(lua_State *L) {
   size_t first = 0;
   bsfit_status st;
   bsfit_err e;
-  luaL_argcheck(L, P->dim == 2, 1, "2D points expected");
-  luaL_argcheck(L, P->n >= 1, 1, "at least 1 point expected");
-  bsfit__lua_checkfinite(L, 1, P);
+  check_section(L, P, 1);
   e = bsfit_segment_start(P->xy, P->n, 2, &first, &st);
   if (e != BSFIT_OK) return bsfit__lua_result(L, e, &st, 0, 1);
   lua_pushinteger(L, (lua_Integer)first + 1);
@@ -321,29 +324,23 @@ static int features_join(lua_State *L) {
   return 1;
 }
 
+static const luaL_Reg geom_funcs[] = {{"segment", features_segment},
+                                      {"segment_sigma", features_segment_sigma},
+                                      {"segment_start", features_segment_start},
+                                      {"self_intersections", features_self_intersections},
+                                      {"piece_distances", features_piece_distances},
+                                      {NULL, NULL}};
+static const luaL_Reg curve_funcs[] = {
+    {"line", features_line}, {"arc", features_arc}, {"join", features_join}, {NULL, NULL}};
+
+/* into the tables bs.geom and bs.curve that the library made before */
 void bsfit__lua_lib_features(lua_State *L) {
   if (lua_getfield(L, -1, "geom") == LUA_TTABLE) {
-    lua_pushcfunction(L, features_segment);
-    lua_setfield(L, -2, "segment");
-    lua_pushcfunction(L, features_segment_sigma);
-    lua_setfield(L, -2, "segment_sigma");
-    lua_pushcfunction(L, features_segment_start);
-    lua_setfield(L, -2, "segment_start");
+    luaL_setfuncs(L, geom_funcs, 0);
     lua_pushnumber(L, BSFIT_SEGMENT_SIGMA_STEP);
     lua_setfield(L, -2, "SEGMENT_SIGMA_STEP");
-    lua_pushcfunction(L, features_self_intersections);
-    lua_setfield(L, -2, "self_intersections");
-    lua_pushcfunction(L, features_piece_distances);
-    lua_setfield(L, -2, "piece_distances");
   }
   lua_pop(L, 1);
-  if (lua_getfield(L, -1, "curve") == LUA_TTABLE) {
-    lua_pushcfunction(L, features_line);
-    lua_setfield(L, -2, "line");
-    lua_pushcfunction(L, features_arc);
-    lua_setfield(L, -2, "arc");
-    lua_pushcfunction(L, features_join);
-    lua_setfield(L, -2, "join");
-  }
+  if (lua_getfield(L, -1, "curve") == LUA_TTABLE) luaL_setfuncs(L, curve_funcs, 0);
   lua_pop(L, 1);
 }
