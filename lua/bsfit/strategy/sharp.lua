@@ -469,15 +469,18 @@ local function closing_length(P, pieces)
   return len + along(pieces[ib], pieces[ib].start, b)
 end
 
--- the longest step between the samples of piece p (of a section of m samples)
+-- the longest step between the samples of piece p (of a section of m samples); in C, as
+-- the closing pieces of a dense section hold most of its samples
 local function piece_longest_step(P, m, p)
-  local h = 0
-  for k = 0, p.count - 2 do
-    local x1, y1 = P:get((p.first - 1 + k) % m + 1)
-    local x2, y2 = P:get((p.first + k) % m + 1)
-    h = math.max(h, math.sqrt((x2 - x1) ^ 2 + (y2 - y1) ^ 2))
+  if p.count < 2 then return 0 end
+  if p.count == 2 then
+    local x1, y1 = P:get(p.first)
+    local x2, y2 = P:get(p.first % m + 1)
+    return math.sqrt((x2 - x1) ^ 2 + (y2 - y1) ^ 2)
   end
-  return h
+  local last = p.first + p.count - 1
+  local Q = last <= m and P:slice(p.first, last) or P:rotate(p.first):slice(1, p.count)
+  return bs.geom.longest_step(Q, { closed = false })
 end
 
 -- Do the closing pieces close the section only over a stretch no sample saw? They run on
