@@ -277,6 +277,12 @@ static size_t place_ends(const seg_section *s, bsfit_piece *p, seg_model *md, si
   return n;
 }
 
+/* whether piece p, when a line, runs from its start to its end along its direction */
+static int runs_forward(const bsfit_piece *p, const seg_model *md) {
+  return p->kind != LINE || (p->end[0] - p->start[0]) * md->line.d[0] +
+                                    (p->end[1] - p->start[1]) * md->line.d[1] > 0;
+}
+
 /* The joins of lines again after the fillets' refits: a line that gave a fillet its
 ** samples is refitted (bsfit__refit_fillets), and its join at the other end was still where
 ** its old model met its neighbour's, so the line drawn between its ends left its model's
@@ -285,7 +291,9 @@ static size_t place_ends(const seg_section *s, bsfit_piece *p, seg_model *md, si
 ** up to 0.1): its reported tangent was not the curve's. A join whose models no longer meet
 ** so keeps its place. A line's join with a free run moves to the foot of its extreme sample
 ** on its new model (a line after a free bridge and before a fillet kept the foot on its old
-** model: a filleted pentagon of 10 samples per side at noise 3e-3, 0.13 degrees off). */
+** model: a filleted pentagon of 10 samples per side at noise 3e-3, 0.13 degrees off). A
+** join that would make either line run backwards (two fillets' tangent points past each
+** other on a short line) keeps its place too. */
 static void rejoin_lines(const seg_section *s, bsfit_piece *p, seg_model *md, size_t np) {
   size_t i;
   for (i = np < 2 ? np : 0; i < np; i++) {
@@ -294,7 +302,8 @@ static void rejoin_lines(const seg_section *s, bsfit_piece *p, seg_model *md, si
     if ((!s->closed && i == 0) || (p[ia].kind == FREE && p[i].kind == FREE)) continue;
     if (p[ia].kind != LINE && p[i].kind != LINE) continue;
     A = p[ia], B = p[i];
-    if (join_pieces(s, &A, &md[ia], &B, &md[i]) && B.join == p[i].join) {
+    if (join_pieces(s, &A, &md[ia], &B, &md[i]) && B.join == p[i].join &&
+        runs_forward(&A, &md[ia]) && runs_forward(&B, &md[i])) {
       p[ia] = A;
       p[i] = B;
     }
@@ -476,8 +485,10 @@ static double arc_turn(const seg_section *s, const bsfit_piece *p, const seg_mod
   return md->orient * (ends + 2 * PI * (double)wraps);
 }
 
-/* Models, ends and sweeps of the np pieces of the cover (p has room for 2 np). */
-static size_t finish_pieces(const seg_section *s, bsfit_piece *p, seg_model *md, size_t np) {
+/* Models, ends and sweeps of the np pieces of the cover (p has room for 2 np; scratch, for
+** 2 m + 2 doubles). */
+static size_t finish_pieces(const seg_section *s, bsfit_piece *p, seg_model *md, size_t np,
+                            double *scratch) {
   size_t i;
   for (i = 0; i < np; i++) {
     md[i].kind = p[i].kind;
@@ -501,6 +512,7 @@ static size_t finish_pieces(const seg_section *s, bsfit_piece *p, seg_model *md,
   bsfit__cover_fillets(s, p, md, np);
   np = bsfit__split_corner_arcs(s, p, md, np);
   np = bsfit__split_bridges(s, p, md, np);
+  np = bsfit__fillet_corners(s, p, md, np, scratch);
   if (np == 1 && s->closed && p[0].kind == ARC &&
       goes_round(s, &p[0], &md[0])) { /* a whole circle */
     bsfit__model_foot(&md[0], sample(s, p[0].first), p[0].start, p[0].t_start);
@@ -636,7 +648,7 @@ bsfit_err bsfit_segment(const double *pts, size_t m, int dim, const bsfit_segmen
   buf = bsfit__alloc(a, bsfit__mulsize(2 * m + 2, sizeof(bsfit_piece)));
   md = bsfit__alloc(a, bsfit__mulsize(2 * m + 2, sizeof(seg_model)));
   heap_at = bsfit__alloc(a, bsfit__mulsize(2 * m, sizeof(size_t)));
-  heap_key = bsfit__alloc(a, bsfit__mulsize(2 * m, sizeof(double)));
+  heap_key = bsfit__alloc(a, bsfit__mulsize(2 * m + 2, sizeof(double)));
   heap_below = bsfit__alloc(a, bsfit__mulsize(2 * m, sizeof(size_t)));
   if (!s.gaps || (s.noisy && !s.moves) || !len[0] || !len[1] || !prim || !fr || !buf || !md ||
       !heap_at || !heap_key || !heap_below) {
@@ -666,7 +678,7 @@ bsfit_err bsfit_segment(const double *pts, size_t m, int dim, const bsfit_segmen
     heaps[1].at = heap_at + m, heaps[1].key = heap_key + m, heaps[1].below = heap_below + m;
     np = bsfit__segment_cover(&s, len, prim, fr, heaps, buf);
   }
-  np = finish_pieces(&s, buf, md, np);
+  np = finish_pieces(&s, buf, md, np, heap_key); /* the cover's heaps are done with */
   for (i = 0; i < np; i++) buf[i].radius_se = buf[i].kind == ARC ? arc_radius_se(&s, buf, md, np, i) : 0.0;
   for (i = 0; i < np && i < cap; i++) pieces[i] = buf[i];
   *count = np;
@@ -682,7 +694,7 @@ done:
   bsfit__free(a, buf, buf ? (2 * m + 2) * sizeof(bsfit_piece) : 0);
   bsfit__free(a, md, md ? (2 * m + 2) * sizeof(seg_model) : 0);
   bsfit__free(a, heap_at, heap_at ? 2 * m * sizeof(size_t) : 0);
-  bsfit__free(a, heap_key, heap_key ? 2 * m * sizeof(double) : 0);
+  bsfit__free(a, heap_key, heap_key ? (2 * m + 2) * sizeof(double) : 0);
   bsfit__free(a, heap_below, heap_below ? 2 * m * sizeof(size_t) : 0);
   return e;
 }

@@ -182,6 +182,12 @@ void bsfit__refit_fillets(const seg_section *s, bsfit_piece *p, seg_model *md, s
 ** joins then find it tangent) */
 void bsfit__cover_fillets(const seg_section *s, bsfit_piece *p, seg_model *md, size_t np);
 
+/* segment_fillets.c: under noise, a corner between two lines whose samples next to it fit
+** the fillet tangent to both better by a price becomes that fillet (p and md have room for
+** np more; saving, scratch for 2 np); returns the new count */
+size_t bsfit__fillet_corners(const seg_section *s, bsfit_piece *p, seg_model *md, size_t np,
+                             double *saving);
+
 /* segment_fillets.c: the standard error of fillet F's radius (its circle tangent to lines
 ** A and B, its radius fitted with them held), the lines' own errors included; HUGE_VAL
 ** when it cannot be had, 0 on exact data */

@@ -440,10 +440,15 @@ end
 -- place a corner may be (corner_places), radii = arcs, radii_ok = how many within 2% of the
 -- radius of the true arc whose centre is nearest, radii_fixed = arcs whose radius_se is at
 -- most 1% of the radius, radii_fixed_ok = of those within 2%, radii_uncertain_ok = of the
--- others within 2% or 3 radius_se}.
+-- others within 2% or 3 radius_se, true_arcs = the outline's arcs, true_arcs_ok = of those,
+-- how many an arc piece reads within 2% (a fillet read as a corner is none: the share of
+-- arcs found within 2% counts only the arcs found, and falls when more are found)}.
 function M.features_found(o, pts, pieces)
   local r, hs = { corners = 0, corners_ok = 0, radii = 0, radii_ok = 0, radii_fixed = 0,
-                  radii_fixed_ok = 0, radii_uncertain_ok = 0 }, M.spacing(pts)
+                  radii_fixed_ok = 0, radii_uncertain_ok = 0, true_arcs = 0, true_arcs_ok = 0 },
+                M.spacing(pts)
+  local read = {} -- the true arcs read within 2%
+
   local places = M.corner_places(o, hs)
   for _, p in ipairs(pieces or {}) do
     if p.join == "corner" then
@@ -456,7 +461,7 @@ function M.features_found(o, pts, pieces)
       local tr = M.true_arc(o, p.centre)
       local err, lim = tr and math.abs(p.radius - tr.r) or math.huge, tr and 0.02 * tr.r or 0
       r.radii = r.radii + 1
-      if err <= lim then r.radii_ok = r.radii_ok + 1 end
+      if err <= lim then r.radii_ok, read[tr] = r.radii_ok + 1, true end
       -- where the samples fix the radius to 1% (radius_se), within 2%; elsewhere within
       -- what radius_se says (3 of it)
       if (p.radius_se or math.huge) <= 0.01 * p.radius then
@@ -465,6 +470,12 @@ function M.features_found(o, pts, pieces)
       elseif err <= math.max(lim, 3 * p.radius_se) then
         r.radii_uncertain_ok = r.radii_uncertain_ok + 1
       end
+    end
+  end
+  for _, q in ipairs(o.prims) do
+    if q.kind == "arc" then
+      r.true_arcs = r.true_arcs + 1
+      if read[q] then r.true_arcs_ok = r.true_arcs_ok + 1 end
     end
   end
   return r
@@ -525,6 +536,61 @@ function M.sweep_cases(opts)
       end
     end
   end)
+end
+
+-- }======================================================================
+
+-- {======================================================================
+-- Random polygons (held-out families of their own: notched, filleted, chamfered)
+-- =======================================================================
+
+-- 4 to 7 vertices round a circle of radius 10, counter-clockwise, each within its own
+-- sector (the polygon is simple)
+function M.random_vertices(uniform)
+  local n, v = 4 + math.floor(4 * uniform()), {}
+  local a0 = 2 * pi * uniform()
+  for k = 0, n - 1 do
+    local a = a0 + 2 * pi * (k + 0.25 + 0.5 * uniform()) / n
+    v[#v + 1] = { 10 * math.cos(a), 10 * math.sin(a) }
+  end
+  return v
+end
+
+-- the closed polygon through w: its outline in this module's form, every vertex a corner
+function M.polygon(w)
+  local o = { prims = {}, corners = {} }
+  for i = 1, #w do
+    o.prims[i] = line(w[i], w[i % #w + 1])
+    o.corners[i] = w[i]
+  end
+  return o
+end
+
+-- count sections of generate(uniform) -> outline, sigma, per, extra, each sampled once
+-- (evenly or unevenly at random): {o, sigma, per, pts, size, extra}
+function M.random_sections(seed, count, generate)
+  local uniform = M.rng(seed)
+  local k = 0
+  return function()
+    k = k + 1
+    if k > count then return nil end
+    local o, sigma, per, extra = generate(uniform)
+    local pts = M.sample(o, per, { seed = seed + k, sigma = sigma, uneven = uniform() < 0.5 })
+    return { o = o, sigma = sigma, per = per, pts = pts, size = M.size(o), extra = extra }
+  end
+end
+
+-- sections through auto: how many of them, and how many within the issue's floor (3 sigma
+-- + 1e-3 of the size); T.eq holds every one free of crossings
+function M.auto_within(T, bs, auto, sections)
+  local n, within = 0, 0
+  for c in sections do
+    local C, rep = auto.run(bs.points.new(c.pts))
+    n = n + 1
+    if M.floor_ratio(bs, C, c) <= 1 then within = within + 1 end
+    T.eq(rep.crossings, 0, "crossings")
+  end
+  return n, within
 end
 
 -- }======================================================================

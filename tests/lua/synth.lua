@@ -59,6 +59,15 @@ function M.corners_of(rep)
   return n
 end
 
+-- the warning of auto's misfit swap (pieces_path.lua: the smooth curve missed a sample by
+-- 6 sigma, so the lines and arcs were fitted), or nil when it was not taken
+function M.misfit_swap(rep)
+  for _, w in ipairs(rep.warnings or {}) do
+    if w:find("the smooth curve missed a sample", 1, true) then return w end
+  end
+  return nil
+end
+
 -- The checks of a smooth section's result (C, rep from auto.run): no loop, reported or
 -- not (T.eq through `T`, tap's), and its name added to `cornered` when it shows a corner
 -- (the callers count them and hold the count to 0).

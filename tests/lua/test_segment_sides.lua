@@ -14,13 +14,8 @@ local auto = require "bsfit.strategy.auto"
 -- A random polygon with a rectangular notch in its longest side: outline (shapes_sharp's
 -- form), its noise and samples per side.
 local function notched(uniform)
-  local n, v = 4 + math.floor(4 * uniform()), {}
-  local a0 = 2 * math.pi * uniform()
-  for k = 0, n - 1 do
-    local a = a0 + 2 * math.pi * (k + 0.25 + 0.5 * uniform()) / n
-    v[#v + 1] = { 10 * math.cos(a), 10 * math.sin(a) }
-  end
-  local longest, len = 1, 0
+  local v = shapes.random_vertices(uniform)
+  local n, longest, len = #v, 1, 0
   for i = 1, n do
     local l = shapes.dist(v[i], v[i % n + 1])
     if l > len then longest, len = i, l end
@@ -42,26 +37,11 @@ local function notched(uniform)
       w[#w + 1] = at(t0 + width, 0)
     end
   end
-  local o = { prims = {}, corners = {} }
-  for i = 1, #w do
-    o.prims[i] = { kind = "line", a = w[i], b = w[i % #w + 1] }
-    o.corners[i] = w[i]
-  end
-  return o, sigma, 3 + math.floor(4 * uniform())
+  return shapes.polygon(w), sigma, 3 + math.floor(4 * uniform())
 end
 
--- the generated sections, each once: {o, sigma, per, pts}
-local function sections(seed, count)
-  local uniform = shapes.rng(seed)
-  local k = 0
-  return function()
-    k = k + 1
-    if k > count then return nil end
-    local o, sigma, per = notched(uniform)
-    local pts = shapes.sample(o, per, { seed = seed + k, sigma = sigma, uneven = uniform() < 0.5 })
-    return { o = o, sigma = sigma, per = per, pts = pts, size = shapes.size(o) }
-  end
-end
+-- the generated sections, each once: {o, sigma, per, pts, size}
+local function sections(seed, count) return shapes.random_sections(seed, count, notched) end
 
 -- At the true noise, 400 sections: 130 were read as their own lines, one per side and no
 -- free piece, and 256 had a free piece (a bridge); now 252 and 112. The rest: an arc across
@@ -88,13 +68,7 @@ end)
 -- auto end to end (the noise read off the sections): 91 of 300 were within the floor (3
 -- sigma + 1e-3 of the size) before, now 149; none crosses itself.
 T.test("notched polygons through auto: within the floor", function()
-  local n, within = 0, 0
-  for c in sections(11, 300) do
-    local C, rep = auto.run(bs.points.new(c.pts))
-    n = n + 1
-    if shapes.floor_ratio(bs, C, c) <= 1 then within = within + 1 end
-    T.eq(rep.crossings, 0, "crossings")
-  end
+  local n, within = shapes.auto_within(T, bs, auto, sections(11, 300))
   print(("# %d notched polygons: %d within the floor"):format(n, within))
   T.ok(within >= 145, within .. " within the floor")
 end)

@@ -13,15 +13,10 @@
 local T = require "tap"
 local bs = require "bsfit"
 local shapes = require "shapes_sharp"
+local synth = require "synth"
 local auto = require "bsfit.strategy.auto"
 
--- the warning of a swap, or nil
-local function swapped(rep)
-  for _, w in ipairs(rep.warnings or {}) do
-    if w:find("the smooth curve missed a sample", 1, true) then return w end
-  end
-  return nil
-end
+local swapped = synth.misfit_swap
 
 T.test("a smooth curve missing its samples by 6 sigma gives way to the lines and arcs", function()
   local n, swaps, within, smooth_within = 0, 0, 0, 0

@@ -101,8 +101,16 @@ end
 -- them, segment_corner_arcs.c: the 5 arcs more are serif ends of two L's of 6 uneven samples
 -- per side, at noise 1e-3 and 3e-3, which went through their pieces 2.7 and 4.3 times the
 -- floor off, where the smooth path had been 13.4 and 4.4)
-local FLOOR = { within = 254, pieces = 308, pieces_within = 248, corners = 0.99, radii = 0.77,
-                radii_fixed = 0.95, radii_uncertain = 0.79 }
+-- (254, 308, 248 and radii 173 of 224 within 2%, 87 of 109 uncertain ones within 3
+-- radius_se, before corners between lines were tried as fillets, segment_fillets.c
+-- bsfit__fillet_corners: 46 arcs more are found, fillets of 3 to 8 samples whose radius
+-- their samples fix to a few percent only, so the share of arcs found within 2% fell to
+-- 175 of 270 and of the uncertain ones within 3 radius_se to 120 of 155 (the radius_se of a
+-- fillet is that of its chosen samples; choosing them among 25 ways is not in it), while
+-- the true arcs read within 2% went from 173 to 175 of 420, within 10% from 199 to 215)
+-- true_arcs: of the outlines' 420 arcs, those an arc piece reads within 2%.
+local FLOOR = { within = 257, pieces = 326, pieces_within = 252, corners = 0.99, radii = 0.64,
+                radii_fixed = 0.95, radii_uncertain = 0.77, true_arcs = 175 }
 -- the sanitizer build's third of the sweep (shapes.thinned): its own counts, measured
 -- (its 28 arcs whose samples do not fix the radius to 1% include a serif of a T of 3
 -- samples per side at noise 1e-3 read as one arc of 229 degrees, which came with the
@@ -110,14 +118,16 @@ local FLOOR = { within = 254, pieces = 308, pieces_within = 248, corners = 0.99,
 -- radius_se, 0.79; the full sweep's share is 89 of 107)
 -- (radii 35 of 50 and 22 of 28 before the sides between lines that do not meet: the 2 arcs
 -- more are an L's serif ends, above)
+-- (69, 91, 67, radii 35 of 52 and 22 of 30 before fillets at corners: 72, 100, 70, 36 of 76
+-- and 38 of 54 since; true arcs read within 2%, 35 and 36 of 140)
 if shapes.thinned then
-  FLOOR = { within = 69, pieces = 91, pieces_within = 67, corners = 0.99, radii = 0.67,
-            radii_fixed = 0.95, radii_uncertain = 0.73 }
+  FLOOR = { within = 72, pieces = 100, pieces_within = 70, corners = 0.99, radii = 0.47,
+            radii_fixed = 0.95, radii_uncertain = 0.7, true_arcs = 36 }
 end
 
 T.test("sparse and noisy sections: no error, closed, no loop; the issue's numbers measured on all", function()
   local rows, tot = {}, { n = 0, pieces = 0, within = 0, pw = 0, c = 0, cok = 0, r = 0, rok = 0,
-                         rf = 0, rfok = 0, ruok = 0,
+                         rf = 0, rfok = 0, ruok = 0, ta = 0, taok = 0,
                          joins = 0, kinks = 0, kink = 0 }
   for c in shapes.sweep_cases { thin = true } do
     local r = run_case(c)
@@ -134,6 +144,7 @@ T.test("sparse and noisy sections: no error, closed, no loop; the issue's number
       tot.r, tot.rok = tot.r + r.radii, tot.rok + r.radii_ok
       tot.rf, tot.rfok = tot.rf + r.radii_fixed, tot.rfok + r.radii_fixed_ok
       tot.ruok = tot.ruok + r.radii_uncertain_ok
+      tot.ta, tot.taok = tot.ta + r.true_arcs, tot.taok + r.true_arcs_ok
       tot.joins, tot.kinks = tot.joins + r.joins, tot.kinks + r.kinks
       tot.kink = math.max(tot.kink, r.kink)
     end
@@ -155,6 +166,8 @@ T.test("sparse and noisy sections: no error, closed, no loop; the issue's number
   T.ok(tot.cok >= FLOOR.corners * tot.c, ("corners within a sample: %d of %d"):format(tot.cok, tot.c))
   print(("# radii the samples fix to 1%%: %d of %d within 2%%; the others: %d of %d within 2%% or 3 radius_se")
     :format(tot.rfok, tot.rf, tot.ruok, tot.r - tot.rf))
+  print(("# true arcs read as arcs within 2%%: %d of %d"):format(tot.taok, tot.ta))
+  T.ok(tot.taok >= FLOOR.true_arcs, ("true arcs read within 2%%: %d of %d"):format(tot.taok, tot.ta))
   T.ok(tot.rok >= FLOOR.radii * tot.r, ("radii within 2%%: %d of %d"):format(tot.rok, tot.r))
   T.ok(tot.rfok >= FLOOR.radii_fixed * tot.rf,
        ("radii the samples fix to 1%%, within 2%%: %d of %d"):format(tot.rfok, tot.rf))

@@ -25,6 +25,11 @@ local function with_outliers(c, w)
   return pts, wts
 end
 
+-- whether the section took its pieces because the smooth curve missed a sample (the misfit
+-- swap): the smooth curve decides it, and down-weighted outliers still pull that curve
+-- (docs/auto.md, Limits)
+local swapped = synth.misfit_swap
+
 -- the largest distance between k samples of two curves at the same parameters
 local function apart(C1, C2, k)
   local S1, S2, worst = C1:sample(k), C2:sample(k), 0
@@ -53,7 +58,7 @@ T.test("gross outliers of weight 1e-2 and 1e-3 on every outline: no error, no lo
         if synth.polyline_crosses(synth.dense_samples(C)) or rep.crossings > 0 then
           loops[#loops + 1] = what
         end
-        if rep0.pieces then -- the same pieces, the same curve
+        if rep0.pieces and not swapped(rep0) then -- the same pieces, the same curve
           pieces = pieces + 1
           T.eq(rep.pieces and #rep.pieces, #rep0.pieces, what .. ": pieces")
           if rep.pieces then
@@ -74,24 +79,31 @@ end)
 -- a sample by 6 sigma, the section swapped to its pieces (pieces_path, the misfit swap) on
 -- every point, but not on the trusted points' path: 8 of the sweep's 390 sections took
 -- other pieces (or none) when outliers of weight 1e-2 were among their samples. What differs
--- now is the smooth curve itself, which the outliers still pull (docs/auto.md, Limits): 2
--- sections (a T of 10 samples per side at noise 1e-3 missed a trusted sample by 6.8 sigma
--- with them and not without; a hexagon of 5 the other way round).
+-- now is the smooth curve itself, which the outliers still pull (docs/auto.md, Limits): a
+-- difference is allowed only where one of the two runs took the swap, and 3 such (a T of
+-- 10 samples per side at noise 1e-3 missed a trusted sample by 6.8 sigma with them and not
+-- without; a hexagon of 5 the other way round; since fillets are tried at corners,
+-- segment_fillets.c, an L with serifs of 4 uneven samples per side at noise 3e-3, whose
+-- pieces the swap took without the outliers).
 T.test("the sweep with and without down-weighted outliers: the same pieces but where the outliers move the smooth curve", function()
-  local n, differ = 0, {}
+  local n, differ, unexplained = 0, {}, {}
   for c in shapes.sweep_cases { thin = true } do
     local _, rep0 = auto.run(bs.points.new(c.pts))
     local pts, wts = with_outliers(c, 1e-2)
     local _, rep = auto.run(bs.points.new(pts), { point_weights = bs.vector.new(wts) })
     n = n + 1
     if (rep0.pieces and #rep0.pieces) ~= (rep.pieces and #rep.pieces) then
-      differ[#differ + 1] = ("%s %d per side noise %g%s: %s pieces without, %s with"):format(c.name,
+      local what = ("%s %d per side noise %g%s: %s pieces without, %s with"):format(c.name,
         c.per, c.rel, c.uneven and " uneven" or "", rep0.pieces and #rep0.pieces or "no",
         rep.pieces and #rep.pieces or "no")
+      local list = (swapped(rep0) or swapped(rep)) and differ or unexplained
+      list[#list + 1] = what
     end
   end
-  print(("# %d sections, %d with other pieces with the outliers"):format(n, #differ))
-  T.ok(#differ <= 2, table.concat(differ, "; "))
+  print(("# %d sections, %d with other pieces with the outliers where one run took the swap, %d else")
+    :format(n, #differ, #unexplained))
+  T.eq(#unexplained, 0, table.concat(unexplained, "; "))
+  T.ok(#differ <= 3, table.concat(differ, "; "))
 end)
 
 T.test("smooth shapes with gross outliers of weight 1e-2: the count search judges fits by the trusted points", function()
