@@ -46,13 +46,10 @@ static int ahead_along(const double *from, const double *to, const double *d) {
   return (to[0] - from[0]) * d[0] + (to[1] - from[1]) * d[1] > 0;
 }
 
-/* Whether line L (model ml) runs forwards from where it meets the piece before it to
-** where it meets the piece after it (prev, next: NULL at an open section's ends; where a
-** join cannot be had, or the neighbour is free, the foot of L's own end sample). Two
-** fillets on a short line put their tangent points past each other, and the line between
-** them ran backwards (a gear of 6 samples per side at noise 3e-3 read at 2.6 times its
-** noise). */
-static int line_runs_forward(const seg_section *s, const bsfit_piece *prev, const seg_model *mprev,
+/* segment_internal.h. Two fillets on a short line put their tangent points past each
+** other, and the line between them ran backwards (a gear of 6 samples per side at noise
+** 3e-3 read at 2.6 times its noise). */
+int bsfit__line_runs_forward(const seg_section *s, const bsfit_piece *prev, const seg_model *mprev,
                              const bsfit_piece *L, const seg_model *ml, const bsfit_piece *next,
                              const seg_model *mnext) {
   double a[2], b[2], t[2];
@@ -285,13 +282,14 @@ static void claim_if_joins_hold(const seg_section *s, bsfit_piece *p, seg_model 
   p[ia] = A, p[i] = F, p[ib] = B, md[ia] = ma, md[i] = mf, md[ib] = mb;
 }
 
-/* whether the lines of fillet i still run forwards between their joins (line_runs_forward) */
+/* whether the lines of fillet i still run forwards between their joins
+** (bsfit__line_runs_forward) */
 static int fillet_lines_forward(const seg_section *s, const bsfit_piece *p, const seg_model *md,
                                 size_t np, size_t i) {
   size_t ia = (i + np - 1) % np, ib = (i + 1) % np, iaa = (ia + np - 1) % np, ibb = (ib + 1) % np;
   int open_a = !s->closed && ia == 0, open_b = !s->closed && ib + 1 == np;
-  return line_runs_forward(s, open_a ? NULL : &p[iaa], &md[iaa], &p[ia], &md[ia], &p[i], &md[i]) &&
-         line_runs_forward(s, &p[i], &md[i], &p[ib], &md[ib], open_b ? NULL : &p[ibb], &md[ibb]);
+  return bsfit__line_runs_forward(s, open_a ? NULL : &p[iaa], &md[iaa], &p[ia], &md[ia], &p[i], &md[i]) &&
+         bsfit__line_runs_forward(s, &p[i], &md[i], &p[ib], &md[ib], open_b ? NULL : &p[ibb], &md[ibb]);
 }
 
 /* Fillet i refitted (and on the first pass under noise, its samples claimed), undone where
@@ -500,10 +498,10 @@ typedef struct seg_neighbours {
   const seg_model *mbefore, *mafter;
 } seg_neighbours;
 
-/* whether both lines of fillet try t still run forwards (line_runs_forward) */
+/* whether both lines of fillet try t still run forwards (bsfit__line_runs_forward) */
 static int keeps_lines(const seg_section *s, const seg_neighbours *nb, fillet_try *t) {
-  return line_runs_forward(s, nb->before, nb->mbefore, &t->a, &t->ma, &t->f, &t->mf) &&
-         line_runs_forward(s, &t->f, &t->mf, &t->b, &t->mb, nb->after, nb->mafter);
+  return bsfit__line_runs_forward(s, nb->before, nb->mbefore, &t->a, &t->ma, &t->f, &t->mf) &&
+         bsfit__line_runs_forward(s, &t->f, &t->mf, &t->b, &t->mb, nb->after, nb->mafter);
 }
 
 /* the fillet between what is left of two lines (a, b) on the ka + kb samples between them */

@@ -182,6 +182,14 @@ void bsfit__refit_fillets(const seg_section *s, bsfit_piece *p, seg_model *md, s
 ** joins then find it tangent) */
 void bsfit__cover_fillets(const seg_section *s, bsfit_piece *p, seg_model *md, size_t np);
 
+/* segment_fillets.c: whether line L (model ml) runs forwards from where it meets the piece
+** before it to where it meets the piece after it (prev, next: NULL at an open section's
+** ends; where a join cannot be had, or the neighbour is free, the foot of L's own end
+** sample) */
+int bsfit__line_runs_forward(const seg_section *s, const bsfit_piece *prev, const seg_model *mprev,
+                             const bsfit_piece *L, const seg_model *ml, const bsfit_piece *next,
+                             const seg_model *mnext);
+
 /* segment_fillets.c: under noise, a corner between two lines whose samples next to it fit
 ** the fillet tangent to both better by a price becomes that fillet (p and md have room for
 ** np more; saving, scratch for 2 np); returns the new count */

@@ -567,15 +567,17 @@ function M.polygon(w)
 end
 
 -- count sections of generate(uniform) -> outline, sigma, per, extra, each sampled once
--- (evenly or unevenly at random): {o, sigma, per, pts, size, extra}
-function M.random_sections(seed, count, generate)
+-- (evenly or unevenly at random; the k-th with noise seed sample_base + k, sample_base
+-- seed unless given): {o, sigma, per, pts, size, extra}
+function M.random_sections(seed, count, generate, sample_base)
   local uniform = M.rng(seed)
   local k = 0
+  sample_base = sample_base or seed
   return function()
     k = k + 1
     if k > count then return nil end
     local o, sigma, per, extra = generate(uniform)
-    local pts = M.sample(o, per, { seed = seed + k, sigma = sigma, uneven = uniform() < 0.5 })
+    local pts = M.sample(o, per, { seed = sample_base + k, sigma = sigma, uneven = uniform() < 0.5 })
     return { o = o, sigma = sigma, per = per, pts = pts, size = M.size(o), extra = extra }
   end
 end
