@@ -12,18 +12,27 @@ local bs = require "bsfit"
 local shapes = require "shapes_sharp"
 local auto = require "bsfit.strategy.auto"
 
--- A random filleted polygon: outline (shapes_sharp's form), its noise and samples per side.
-local function filleted_polygon(uniform)
-  local v, r = shapes.random_vertices(uniform), {}
-  local n = #v
+-- Random fillet radii for the corners of polygon v: at a share of them, a fraction from lo
+-- to hi of the largest radius the corner holds (its tangent points at the end of the
+-- shorter side next to it); 0 (a sharp corner) elsewhere.
+local function fillet_radii(uniform, v, share, lo, hi)
+  local n, r = #v, {}
   for k = 1, n do
-    -- at most a third of the shorter side next to the corner is the fillet's
     local p, q, w = v[(k - 2) % n + 1], v[k], v[k % n + 1]
     local d1, d2 = shapes.dist(q, p), shapes.dist(q, w)
     local cos = ((p[1] - q[1]) * (w[1] - q[1]) + (p[2] - q[2]) * (w[2] - q[2])) / (d1 * d2)
     local half = 0.5 * math.acos(math.max(-1, math.min(1, cos)))
-    r[k] = uniform() < 0.5 and (0.1 + 0.23 * uniform()) * math.min(d1, d2) * math.tan(half) or 0
+    r[k] = uniform() < share and (lo + (hi - lo) * uniform()) * math.min(d1, d2) * math.tan(half)
+           or 0
   end
+  return r
+end
+
+-- A random filleted polygon: outline (shapes_sharp's form), its noise and samples per side
+-- (a fillet at about half the corners, at most a third of the shorter side next to it).
+local function filleted_polygon(uniform)
+  local v = shapes.random_vertices(uniform)
+  local r = fillet_radii(uniform, v, 0.5, 0.1, 0.33)
   local sigma = 20 * (5e-4 + 2.5e-3 * uniform())
   return shapes.filleted(v, r), sigma, 3 + math.floor(6 * uniform())
 end
@@ -132,16 +141,8 @@ end)
 -- 0.05 to 0.45 of the largest a corner holds, 3 to 30 samples per side, noise 1e-4 to
 -- 1e-2 of the size.
 local function wide_filleted_polygon(uniform)
-  local v, r = shapes.random_vertices(uniform), {}
-  local n = #v
-  for k = 1, n do
-    local p, q, w = v[(k - 2) % n + 1], v[k], v[k % n + 1]
-    local d1, d2 = shapes.dist(q, p), shapes.dist(q, w)
-    local cos = ((p[1] - q[1]) * (w[1] - q[1]) + (p[2] - q[2]) * (w[2] - q[2])) / (d1 * d2)
-    local half = 0.5 * math.acos(math.max(-1, math.min(1, cos)))
-    r[k] = uniform() < 0.6 and (0.05 + 0.4 * uniform()) * math.min(d1, d2) * math.tan(half) or 0
-  end
-  local o = shapes.filleted(v, r)
+  local v = shapes.random_vertices(uniform)
+  local o = shapes.filleted(v, fillet_radii(uniform, v, 0.6, 0.05, 0.45))
   local rel = ({ 1e-4, 1e-3, 3e-3, 1e-2 })[1 + math.floor(4 * uniform())]
   return o, rel * shapes.size(o), ({ 3, 4, 6, 10, 30 })[1 + math.floor(5 * uniform())]
 end
