@@ -1,0 +1,74 @@
+-- stress_segment.lua: validity of bs.geom.segment's lines on families no floor is tuned on,
+-- as a tool to look for bugs (it asserts nothing; the families it found bugs in are tests
+-- now: test_segment_corner_fillets 4, test_sharp_noisy 5). Every line must run from its
+-- start to its end along its reported tangent (sin <= 1e-9, forwards). Lists each line
+-- that does not, then the counts:
+--   closed  the sweep's outlines (3 to 30 samples per side, noise 1e-4 to 1e-2), closed,
+--           read at the noise bs.geom.segment_sigma finds;
+--   open    the same with a quarter to a half of each dropped, read as open;
+--   coarse  the sweep's sections read at 1%, 2% and 5% of their size (far above their
+--           noise: 2026-12-08, 14 of 2507 lines off, two lines meeting at one point at
+--           both joins; docs/auto.md, Limits).
+--   bsfit tests/bench/stress_segment.lua [SEED] [COUNT]   (from the source tree, ~10 s)
+local here = arg[0]:match("^(.*)/[^/]*$") or "."
+package.path = here .. "/../lua/?.lua;" .. package.path
+local bs = require "bsfit"
+local shapes = require "shapes_sharp"
+
+local seed, count = tonumber(arg[1] or 5), tonumber(arg[2] or 1000)
+
+-- the lines of pieces that leave their reported tangent, each printed with `what`
+local function lines_off(pieces, what)
+  local lines, off = 0, 0
+  for i, p in ipairs(pieces) do
+    local dx, dy = p["end"][1] - p.start[1], p["end"][2] - p.start[2]
+    local l = math.sqrt(dx * dx + dy * dy)
+    if p.kind == "line" and l > 0 then
+      lines = lines + 1
+      local sin = math.abs(dx * p.t_start[2] - dy * p.t_start[1]) / l
+      if sin > 1e-9 or (dx * p.t_start[1] + dy * p.t_start[2]) <= 0 then
+        off = off + 1
+        print(("%s: line %d (samples %d..+%d) off its tangent, sin %.3g"):format(what, i, p.first,
+          p.count, sin))
+      end
+    end
+  end
+  return lines, off
+end
+
+local totals = {}
+local function add(family, lines, off)
+  local t = totals[family] or { lines = 0, off = 0 }
+  totals[family] = t
+  t.lines, t.off = t.lines + lines, t.off + off
+end
+
+local uniform, all, names = shapes.rng(seed), shapes.all(), shapes.names()
+for k = 1, count do
+  local name = names[1 + math.floor(#names * uniform())]
+  local o = all[name]
+  local rel = ({ 1e-4, 1e-3, 3e-3, 1e-2 })[1 + math.floor(4 * uniform())]
+  local per = ({ 3, 4, 6, 10, 30 })[1 + math.floor(5 * uniform())]
+  local pts = shapes.sample(o, per, { seed = k, sigma = rel * shapes.size(o), uneven = uniform() < 0.5 })
+  local what = ("%s %d per side noise %g (case %d)"):format(name, per, rel, k)
+  local m, first = #pts, 1 + math.floor(#pts * uniform())
+  local drop, part = math.floor(m * (0.25 + 0.25 * uniform())), {}
+  for j = 0, m - drop - 1 do part[#part + 1] = pts[(first + drop + j - 1) % m + 1] end
+  for _, f in ipairs { { "closed", pts, true }, { "open", part, false } } do
+    local P = bs.points.new(f[2])
+    local s = bs.geom.segment_sigma(P, { closed = f[3] })
+    if s > 0 then add(f[1], lines_off(bs.geom.segment(P, { closed = f[3], sigma = s }), what .. " " .. f[1])) end
+  end
+end
+for c in shapes.sweep_cases { pers = { 3, 4, 6, 10 }, rels = { 1e-3, 3e-3 } } do
+  local P = bs.points.new(c.pts)
+  for _, f in ipairs { 0.01, 0.02, 0.05 } do
+    local what = ("%s %d per side noise %g%s at %g of the size"):format(c.name, c.per, c.rel,
+      c.uneven and " uneven" or "", f)
+    add("coarse", lines_off(bs.geom.segment(P, { closed = true, sigma = f * c.size }), what))
+  end
+end
+for _, family in ipairs { "closed", "open", "coarse" } do
+  local t = totals[family] or { lines = 0, off = 0 }
+  print(("%-7s %6d lines, %d off their reported tangent"):format(family, t.lines, t.off))
+end
