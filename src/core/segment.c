@@ -295,12 +295,6 @@ static size_t place_ends(const seg_section *s, bsfit_piece *p, seg_model *md, si
   return n;
 }
 
-/* whether piece p, when a line, runs from its start to its end along its direction */
-static int runs_forward(const bsfit_piece *p, const seg_model *md) {
-  return p->kind != LINE || (p->end[0] - p->start[0]) * md->line.d[0] +
-                                    (p->end[1] - p->start[1]) * md->line.d[1] > 0;
-}
-
 /* The joins of lines again after the fillets' refits: a line that gave a fillet its
 ** samples is refitted (bsfit__refit_fillets), and its join at the other end was still where
 ** its old model met its neighbour's, so the line drawn between its ends left its model's
@@ -309,9 +303,7 @@ static int runs_forward(const bsfit_piece *p, const seg_model *md) {
 ** up to 0.1): its reported tangent was not the curve's. A join whose models no longer meet
 ** so keeps its place. A line's join with a free run moves to the foot of its extreme sample
 ** on its new model (a line after a free bridge and before a fillet kept the foot on its old
-** model: a filleted pentagon of 10 samples per side at noise 3e-3, 0.13 degrees off). A
-** join that would make either line run backwards (two fillets' tangent points past each
-** other on a short line) keeps its place too. */
+** model: a filleted pentagon of 10 samples per side at noise 3e-3, 0.13 degrees off). */
 static void rejoin_lines(const seg_section *s, bsfit_piece *p, seg_model *md, size_t np) {
   size_t i;
   for (i = np < 2 ? np : 0; i < np; i++) {
@@ -320,8 +312,7 @@ static void rejoin_lines(const seg_section *s, bsfit_piece *p, seg_model *md, si
     if ((!s->closed && i == 0) || (p[ia].kind == FREE && p[i].kind == FREE)) continue;
     if (p[ia].kind != LINE && p[i].kind != LINE) continue;
     A = p[ia], B = p[i];
-    if (join_pieces(s, &A, &md[ia], &B, &md[i]) && B.join == p[i].join &&
-        runs_forward(&A, &md[ia]) && runs_forward(&B, &md[i])) {
+    if (join_pieces(s, &A, &md[ia], &B, &md[i]) && B.join == p[i].join) {
       p[ia] = A;
       p[i] = B;
     }
