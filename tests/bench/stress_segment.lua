@@ -17,23 +17,15 @@ local shapes = require "shapes_sharp"
 
 local seed, count = tonumber(arg[1] or 5), tonumber(arg[2] or 1000)
 
--- the lines of pieces that leave their reported tangent, each printed with `what`
+-- the lines of pieces, and how many leave their reported tangent, each printed with `what`
 local function lines_off(pieces, what)
-  local lines, off = 0, 0
-  for i, p in ipairs(pieces) do
-    local dx, dy = p["end"][1] - p.start[1], p["end"][2] - p.start[2]
-    local l = math.sqrt(dx * dx + dy * dy)
-    if p.kind == "line" and l > 0 then
-      lines = lines + 1
-      local sin = math.abs(dx * p.t_start[2] - dy * p.t_start[1]) / l
-      if sin > 1e-9 or (dx * p.t_start[1] + dy * p.t_start[2]) <= 0 then
-        off = off + 1
-        print(("%s: line %d (samples %d..+%d) off its tangent, sin %.3g"):format(what, i, p.first,
-          p.count, sin))
-      end
-    end
+  local lines, off = shapes.lines_off_tangent(pieces)
+  for _, b in ipairs(off) do
+    local p = pieces[b.i]
+    print(("%s: line %d (samples %d..+%d) off its tangent, sin %.3g"):format(what, b.i, p.first,
+      p.count, b.sin))
   end
-  return lines, off
+  return lines, #off
 end
 
 local totals = {}
@@ -51,13 +43,9 @@ for k = 1, count do
   local per = ({ 3, 4, 6, 10, 30 })[1 + math.floor(5 * uniform())]
   local pts = shapes.sample(o, per, { seed = k, sigma = rel * shapes.size(o), uneven = uniform() < 0.5 })
   local what = ("%s %d per side noise %g (case %d)"):format(name, per, rel, k)
-  local m, first = #pts, 1 + math.floor(#pts * uniform())
-  local drop, part = math.floor(m * (0.25 + 0.25 * uniform())), {}
-  for j = 0, m - drop - 1 do part[#part + 1] = pts[(first + drop + j - 1) % m + 1] end
+  local part = shapes.open_part(pts, uniform)
   for _, f in ipairs { { "closed", pts, true }, { "open", part, false } } do
-    local P = bs.points.new(f[2])
-    local s = bs.geom.segment_sigma(P, { closed = f[3] })
-    if s > 0 then add(f[1], lines_off(bs.geom.segment(P, { closed = f[3], sigma = s }), what .. " " .. f[1])) end
+    add(f[1], lines_off(shapes.segment_at_own_noise(bs, bs.points.new(f[2]), f[3]), what .. " " .. f[1]))
   end
 end
 for c in shapes.sweep_cases { pers = { 3, 4, 6, 10 }, rels = { 1e-3, 3e-3 } } do

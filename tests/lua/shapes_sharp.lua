@@ -595,6 +595,46 @@ function M.auto_within(T, bs, auto, sections)
   return n, within
 end
 
+-- {======================================================================
+-- Checks of bs.geom.segment's pieces
+-- =======================================================================
+
+-- The lines of pieces (bs.geom.segment's) that do not run from their start to their end
+-- along their reported tangent (sin above 1e-9, backwards, or t_end other than t_start):
+-- how many lines there are, those off ({i, sin, cos} each) and the largest sin.
+function M.lines_off_tangent(pieces)
+  local lines, off, worst = 0, {}, 0
+  for i, p in ipairs(pieces) do
+    local dx, dy = p["end"][1] - p.start[1], p["end"][2] - p.start[2]
+    local l = math.sqrt(dx * dx + dy * dy)
+    if p.kind == "line" and l > 0 then
+      local sin = math.abs(dx * p.t_start[2] - dy * p.t_start[1]) / l
+      local cos = (dx * p.t_start[1] + dy * p.t_start[2]) / l
+      lines, worst = lines + 1, math.max(worst, sin)
+      if sin > 1e-9 or cos <= 0 or p.t_end[1] ~= p.t_start[1] or p.t_end[2] ~= p.t_start[2] then
+        off[#off + 1] = { i = i, sin = sin, cos = cos }
+      end
+    end
+  end
+  return lines, off, worst
+end
+
+-- the pieces of points P (a Points) segmented at the noise they show
+-- (bs.geom.segment_sigma); {} where it reads none
+function M.segment_at_own_noise(bs, P, closed)
+  local s = bs.geom.segment_sigma(P, { closed = closed })
+  return s > 0 and bs.geom.segment(P, { closed = closed, sigma = s }) or {}
+end
+
+-- an open part of a closed section's samples pts: a quarter to a half of them dropped,
+-- from a random place
+function M.open_part(pts, uniform)
+  local m, first = #pts, 1 + math.floor(#pts * uniform())
+  local drop, part = math.floor(m * (0.25 + 0.25 * uniform())), {}
+  for j = 0, m - drop - 1 do part[#part + 1] = pts[(first + drop + j - 1) % m + 1] end
+  return part
+end
+
 -- }======================================================================
 
 return M

@@ -156,18 +156,9 @@ end
 T.test("filleted polygons over wide ranges: every line runs along its reported tangent", function()
   local lines, off = 0, {}
   for c in shapes.random_sections(8, 3000, wide_filleted_polygon, 0) do
-    local P = bs.points.new(c.pts)
-    local s = bs.geom.segment_sigma(P, { closed = true })
-    for _, p in ipairs(s > 0 and bs.geom.segment(P, { closed = true, sigma = s }) or {}) do
-      local dx, dy = p["end"][1] - p.start[1], p["end"][2] - p.start[2]
-      local l = math.sqrt(dx * dx + dy * dy)
-      if p.kind == "line" and l > 0 then
-        lines = lines + 1
-        local sin = math.abs(dx * p.t_start[2] - dy * p.t_start[1]) / l
-        local cos = (dx * p.t_start[1] + dy * p.t_start[2]) / l
-        if sin > 1e-9 or cos <= 0 then off[#off + 1] = ("sin %.3g cos %.3g"):format(sin, cos) end
-      end
-    end
+    local n, bad = shapes.lines_off_tangent(shapes.segment_at_own_noise(bs, bs.points.new(c.pts), true))
+    lines = lines + n
+    for _, b in ipairs(bad) do off[#off + 1] = ("sin %.3g cos %.3g"):format(b.sin, b.cos) end
   end
   print(("# %d lines, %d off their reported tangent"):format(lines, #off))
   T.ok(lines > 8000, lines .. " lines")

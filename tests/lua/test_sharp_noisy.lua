@@ -233,20 +233,8 @@ end)
 local function lines_off_tangent(cases)
   local lines, off, worst = 0, 0, 0
   for c in cases do
-    local P = bs.points.new(c.pts)
-    local s = bs.geom.segment_sigma(P, { closed = true })
-    for _, p in ipairs(s and bs.geom.segment(P, { closed = true, sigma = s }) or {}) do
-      local dx, dy = p["end"][1] - p.start[1], p["end"][2] - p.start[2]
-      local l = math.sqrt(dx * dx + dy * dy)
-      if p.kind == "line" and l > 0 then
-        local sin = math.abs(dx * p.t_start[2] - dy * p.t_start[1]) / l
-        local cos = (dx * p.t_start[1] + dy * p.t_start[2]) / l
-        lines, worst = lines + 1, math.max(worst, sin)
-        if sin > 1e-9 or cos <= 0 or p.t_end[1] ~= p.t_start[1] or p.t_end[2] ~= p.t_start[2] then
-          off = off + 1
-        end
-      end
-    end
+    local n, o, w = shapes.lines_off_tangent(shapes.segment_at_own_noise(bs, bs.points.new(c.pts), true))
+    lines, off, worst = lines + n, off + #o, math.max(worst, w)
   end
   return lines, off, worst
 end
@@ -265,15 +253,6 @@ T.test("lines run along their reported tangents", function()
   end
 end)
 
--- bs.geom.segment_sigma on sparse sections of lines and arcs, 3 to 6 samples per side: its
--- first guess (the chords' lower quartile) can fall on samples next to corners and arcs and
--- start the levels above the noise, where no level matches; the levels below the start are
--- then tried. 832 sections: 67 estimates of 0 and 635 within a factor 3 of the true noise
--- before, 44 and 652 after; a slot of 4 samples per side at noise 1e-4 started at 11 times
--- its noise and read 0 (sent down the smooth path, 7 times the floor off). 32 and 649
--- before an arc whose circle fit fails became the line of its samples, 40 and 647 after:
--- such an arc had counted its samples at residual 0, a pooled residual too low to be one.
-
 -- Open parts of the outlines (a quarter to a half of each dropped, at 3 to 30 samples per
 -- side and noise 1e-4 to 1e-2): an open section's first line kept its start on its model
 -- before a fillet's refit moved it, so it left its reported tangent (a part of a slot of 30
@@ -287,27 +266,27 @@ T.test("open parts of outlines: lines run along their reported tangents", functi
     local rel = ({ 1e-4, 1e-3, 3e-3, 1e-2 })[1 + math.floor(4 * uniform())]
     local per = ({ 3, 4, 6, 10, 30 })[1 + math.floor(5 * uniform())]
     local pts = shapes.sample(o, per, { seed = k, sigma = rel * shapes.size(o), uneven = uniform() < 0.5 })
-    local m, first = #pts, 1 + math.floor(#pts * uniform())
-    local drop, part = math.floor(m * (0.25 + 0.25 * uniform())), {}
-    for j = 0, m - drop - 1 do part[#part + 1] = pts[(first + drop + j - 1) % m + 1] end
-    local P = bs.points.new(part)
-    local s = bs.geom.segment_sigma(P, { closed = false })
-    for _, p in ipairs(s > 0 and bs.geom.segment(P, { closed = false, sigma = s }) or {}) do
-      local dx, dy = p["end"][1] - p.start[1], p["end"][2] - p.start[2]
-      local l = math.sqrt(dx * dx + dy * dy)
-      if p.kind == "line" and l > 0 then
-        lines = lines + 1
-        local sin = math.abs(dx * p.t_start[2] - dy * p.t_start[1]) / l
-        if sin > 1e-9 or (dx * p.t_start[1] + dy * p.t_start[2]) <= 0 then
-          off[#off + 1] = ("%s %d per side noise %g: sin %.3g"):format(name, per, rel, sin)
-        end
-      end
+    local part = shapes.open_part(pts, uniform)
+    local n, bad = shapes.lines_off_tangent(shapes.segment_at_own_noise(bs, bs.points.new(part), false))
+    lines = lines + n
+    for _, b in ipairs(bad) do
+      off[#off + 1] = ("%s %d per side noise %g: sin %.3g"):format(name, per, rel, b.sin)
     end
   end
   print(("# %d lines of open parts, %d off their reported tangent"):format(lines, #off))
   T.ok(lines > (shapes.thinned and 500 or 1500), lines .. " lines")
   T.eq(#off, 0, "lines off their tangent: " .. table.concat(off, "; "))
 end)
+
+-- bs.geom.segment_sigma on sparse sections of lines and arcs, 3 to 6 samples per side: its
+-- first guess (the chords' lower quartile) can fall on samples next to corners and arcs and
+-- start the levels above the noise, where no level matches; the levels below the start are
+-- then tried. 832 sections: 67 estimates of 0 and 635 within a factor 3 of the true noise
+-- before, 44 and 652 after; a slot of 4 samples per side at noise 1e-4 started at 11 times
+-- its noise and read 0 (sent down the smooth path, 7 times the floor off). 32 and 649
+-- before an arc whose circle fit fails became the line of its samples, 40 and 647 after:
+-- such an arc had counted its samples at residual 0, a pooled residual too low to be one.
+
 T.test("the noise of the pieces when the first guess lies above it", function()
   local n, zero, good = 0, 0, 0
   for _, name in ipairs(NAMES) do
