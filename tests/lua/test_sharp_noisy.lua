@@ -45,13 +45,12 @@ local function run_case(c)
   local found = shapes.features_found(o, pts, rep.pieces)
   for k, v in pairs(found) do r[k] = v end
   r.kink, r.kinks, r.joins, r.opposed = shapes.tangent_kinks(C, rep, KINK)
-  -- a fillet (an arc tangent to lines at both ends) reports the circle drawn, and its rms
-  -- and max are its samples' distances to that circle (they were the model's)
-  local P = rep.pieces or {}
-  for i, p in ipairs(P) do
-    local A, B = P[(i - 2) % #P + 1], P[i % #P + 1]
-    if p.kind == "arc" and A.kind == "line" and B.kind == "line" and p.join == "tangent"
-       and B.join == "tangent" and #P >= 3 and p.count > 0 then
+  -- every arc reports the circle drawn: its ends and the curve at the middle of its range
+  -- lie on it, and its rms and max are its samples' distances to it (a fillet's were its
+  -- model's; any other arc reported its fitted circle, which its drawn ends lie within the
+  -- tolerance of only: up to 31 sigma off on the sweep, 5 of its 270 arcs by more than 3)
+  for i, p in ipairs(rep.pieces or {}) do
+    if p.kind == "arc" and p.count > 0 then
       local q2, worst = 0, 0
       for k = 0, p.count - 1 do
         local x = pts[(p.first - 1 + k) % #pts + 1]
@@ -59,8 +58,14 @@ local function run_case(c)
         q2, worst = q2 + d * d, math.max(worst, d)
       end
       T.ok(math.abs(worst - p.max) <= 1e-9 * c.size and math.abs(math.sqrt(q2 / p.count) - p.rms) <= 1e-9 * c.size,
-           ("%s: fillet %d reports max %.6g rms %.6g, its samples %.6g %.6g"):format(what, i, p.max, p.rms,
+           ("%s: arc %d reports max %.6g rms %.6g, its samples %.6g %.6g"):format(what, i, p.max, p.rms,
              worst, math.sqrt(q2 / p.count)))
+      local a, b = C:domain()
+      local mid = { C:eval(a + (b - a) * (p.range[1] + p.range[2]) / 2) }
+      for _, x in ipairs { p.start, p["end"], mid } do
+        T.ok(math.abs(dist(x, p.centre) - p.radius) <= 1e-9 * c.size,
+             ("%s: arc %d drawn %.3g off the circle it reports"):format(what, i, math.abs(dist(x, p.centre) - p.radius)))
+      end
     end
   end
   T.eq(r.opposed, 0, what .. ": a tangent join whose pieces run opposite ways (a cusp)")

@@ -155,7 +155,11 @@ function M.report(ctx)
   rep.closed = common.closed(ctx)
   rep.closed_ambiguous = ctx.closed_ambiguous or false
   rep.crossings = ctx.loops or 0
-  if pieces.taken(ctx) then rep.pieces, rep.pieces_sigma = ctx.segment, ctx.segment_sigma end
+  if pieces.taken(ctx) then
+    local t = common.trusted(ctx)
+    rep.pieces = sharp.as_drawn(ctx.P, ctx.segment, t and t.isout)
+    rep.pieces_sigma = ctx.segment_sigma
+  end
   rep.pieces_rejected = ctx.sharp_rejected
   -- warnings: appended to those the common report may already carry
   if ctx.warnings and #ctx.warnings > 0 then

@@ -222,12 +222,14 @@ end
 
 -- The curve of an arc piece and its length (nil when its model is degenerate: repeated
 -- samples can give a whole-circle arc whose centre is its end; a free run then fits them).
+-- The circle drawn is kept in p.drawn (M.as_drawn reports it).
 local function arc_curve(p, t_start, t_end, slack)
   local a, b = p.start, p["end"]
   local c = arc_centre(p, t_start, t_end, slack)
   local r = dist(a, c)
   local a0, sweep = math.atan(a[2] - c[2], a[1] - c[1]), sweep_round(p, a, b, c)
   if not (r > 0 and r < math.huge and math.abs(sweep) <= 2 * math.pi) then return nil end
+  p.drawn = { centre = c, radius = r, sweep = sweep }
   return bs.curve.arc { centre = c, radius = r, start = a0, sweep = sweep }, r * math.abs(sweep)
 end
 
@@ -588,6 +590,36 @@ function M.assemble(P, pieces, o)
   pieces[#pieces].range[2] = 1
   if o.closed then C = periodic_of(C) end
   return C
+end
+
+-- The pieces as their curve draws them, for the report: copies in which an arc's centre,
+-- radius and sweep are those of the arc drawn (under noise its ends lie within the
+-- tolerance of its fitted circle, not on it, and the arc is drawn through them: its
+-- centre moves along their bisector, by many sigma on a short arc) and its rms and max
+-- its samples' distances to that circle; the fitted circle stays in fit_centre and
+-- fit_radius. Pieces never drawn (the sharp.assemble that made the curve was not run on
+-- them) are copied as they are. skip: sample indices left out of rms and max (down-weighted
+-- points, as in sharp.assemble's options).
+function M.as_drawn(P, pieces, skip)
+  local out = {}
+  for i, p in ipairs(pieces) do
+    local q = {}
+    for k, v in pairs(p) do q[k] = v end
+    q.drawn = nil
+    if p.kind == "arc" and p.drawn then
+      local c, r = p.drawn.centre, p.drawn.radius
+      q.fit_centre, q.fit_radius = p.centre, p.radius
+      q.centre, q.radius, q.sweep = { c[1], c[2] }, r, p.drawn.sweep
+      local q2, worst, pts = 0, 0, piece_samples(P, p, nil, skip)
+      for _, x in ipairs(pts) do
+        local d = math.abs(dist(x, c) - r)
+        q2, worst = q2 + d * d, math.max(worst, d)
+      end
+      if #pts > 0 then q.rms, q.max = math.sqrt(q2 / #pts), worst end
+    end
+    out[i] = q
+  end
+  return out
 end
 
 -- The distances of the samples to the curve of the pieces (a Vector): each sample's foot is
