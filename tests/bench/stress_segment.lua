@@ -7,8 +7,8 @@
 --           read at the noise bs.geom.segment_sigma finds;
 --   open    the same with a quarter to a half of each dropped, read as open;
 --   coarse  the sweep's sections read at 1%, 2% and 5% of their size (far above their
---           noise: 2026-12-08, 14 of 2507 lines off, two lines meeting at one point at
---           both joins; docs/auto.md, Limits).
+--           noise: 14 of 2507 lines off until two lines meeting at one point at both
+--           joins were no longer a cover, test_segment_noisy_joins 4).
 --   bsfit tests/bench/stress_segment.lua [SEED] [COUNT]   (from the source tree, ~10 s)
 local here = arg[0]:match("^(.*)/[^/]*$") or "."
 package.path = here .. "/../lua/?.lua;" .. package.path
