@@ -3,7 +3,9 @@
 ** What the segmentation's files share (segment.c: the pieces and bsfit_segment;
 ** segment_runs.c: the maximal runs each model explains; segment_cover.c: the cover of
 ** least cost; segment_joins.c: where pieces meet; segment_evidence.c: the evidence of
-** corners; segment_fillets.c: fillets between lines): the section worked on, a side model
+** corners; segment_fillets.c: fillets between lines, segment_corner_fillets.c: corners
+** that are fillets, segment_fillet_se.c: a fillet radius's error; segment_corner_arcs.c:
+** arcs across corners, sides between lines that meet nowhere): the section worked on, a side model
 ** of either kind, the cover's cells and heaps, and their small accessors. Not part of the
 ** public API.
 */
@@ -190,13 +192,46 @@ int bsfit__line_runs_forward(const seg_section *s, const bsfit_piece *prev, cons
                              const bsfit_piece *L, const seg_model *ml, const bsfit_piece *next,
                              const seg_model *mnext);
 
-/* segment_fillets.c: under noise, a corner between two lines whose samples next to it fit
+/* segment_fillets.c: the geometry of a fillet between lines A and B (models ma, mb), shared
+** by the fillet steps. Its frame: the lines' corner V, the unit bisector u into the turn and
+** k = 1 / sin(half the inner angle), the circle of radius r tangent to both centred at
+** V + u k r (0 when the lines are parallel or turn back); */
+int bsfit__fillet_frame(const seg_model *ma, const seg_model *mb, double *V, double *u, double *k);
+/* the radius of that circle that fits F's samples best, from r (its residual into *rss, the
+** radius's information into *info; -1 when it fails); */
+double bsfit__fillet_radius(const seg_section *s, const bsfit_piece *F, const double *V,
+                            const double *u, double k, double r, double *rss, double *info);
+/* F made that circle of radius r, its ends and A's and B's on it; */
+void bsfit__set_fillet(const seg_section *s, bsfit_piece *A, const seg_model *ma, bsfit_piece *F,
+                       seg_model *mf, bsfit_piece *B, const seg_model *mb, const double *V,
+                       const double *u, double k, double r);
+/* F takes the lines' samples past its tangent points, all refitted; 0 where a piece then
+** leaves its tolerance */
+int bsfit__settle_fillet(const seg_section *s, bsfit_piece *A, seg_model *ma, bsfit_piece *F,
+                         seg_model *mf, bsfit_piece *B, seg_model *mb);
+
+/* the cross product of two lines' directions: the sign of the turn from a to b */
+static inline double bsfit__turn_sign(const seg_model *a, const seg_model *b) {
+  return a->line.d[0] * b->line.d[1] - a->line.d[1] * b->line.d[0];
+}
+
+/* a fillet between two lines as it would be made: the three pieces and their models */
+typedef struct seg_fillet_try {
+  bsfit_piece a, f, b;
+  seg_model ma, mf, mb;
+} seg_fillet_try;
+
+static inline double bsfit__fillet_try_rss(const seg_fillet_try *t) {
+  return fitted_rss(&t->a) + fitted_rss(&t->f) + fitted_rss(&t->b);
+}
+
+/* segment_corner_fillets.c: under noise, a corner between two lines whose samples next to it fit
 ** the fillet tangent to both better by a price becomes that fillet (p and md have room for
 ** np more; saving, scratch for 2 np); returns the new count */
 size_t bsfit__fillet_corners(const seg_section *s, bsfit_piece *p, seg_model *md, size_t np,
                              double *saving);
 
-/* segment_fillets.c: the standard error of fillet F's radius (its circle tangent to lines
+/* segment_fillet_se.c: the standard error of fillet F's radius (its circle tangent to lines
 ** A and B, its radius fitted with them held), the lines' own errors included; HUGE_VAL
 ** when it cannot be had, 0 on exact data */
 double bsfit__fillet_radius_se(const seg_section *s, const bsfit_piece *A, const seg_model *ma,

@@ -3,7 +3,7 @@
 -- which prices an arc at 3 parameters, reads it as a corner (its samples shared by the two
 -- lines) or as a chamfer (a short line between two corners). Each such corner and chamfer
 -- is now tried as the fillet tangent to both lines (one parameter, its radius), and kept
--- where it saves more than 16 sigma^2 (bsfit__fillet_corners, src/core/segment_fillets.c).
+-- where it saves more than 16 sigma^2 (bsfit__fillet_corners, src/core/segment_corner_fillets.c).
 -- The polygons are random (4 to 7 vertices round a circle, a fillet of random radius at
 -- about half of them, the others sharp), sampled 3 to 8 times per side and fillet, evenly
 -- and unevenly, at noise 5e-4 to 3e-3 of their size.

@@ -69,7 +69,7 @@ T.test("arcs of noisy outlines: within 2 standard errors at least 88% of the tim
   T.ok(#z >= 300, #z .. " arcs")
   T.ok(within / #z >= 0.88, ("%.3f within 2 SE"):format(within / #z))
   -- fillets (arcs tangent to a line at both ends, their radius fitted with the lines
-  -- held): their radius_se counts the lines' own errors (segment_fillets.c), not their
+  -- held): their radius_se counts the lines' own errors (segment_fillet_se.c), not their
   -- own samples' as a free circle, which put the median error at 0.37 of one (too wide
   -- a standard error: the lines fix all but the radius)
   local zs = {}
