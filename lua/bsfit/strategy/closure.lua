@@ -36,30 +36,40 @@ local function gap_decision(P, gap, h, hmax)
   return false, gap > 2.5 * hmax
 end
 
--- Does the chord from the last sample to the first cross a step of the samples' polygon
--- in its middle (a tenth of it from either end at least), a step more than a tenth of the
--- samples (and 2) from either end? Crossings near the ends are a closed scan's overlap, or
--- noise (a sparse noisy rounded rectangle's closing step crosses its neighbour's).
-local function chord_crosses(P)
-  local m = #P
-  local ax, ay = P:get(m)
-  local bx, by = P:get(1)
-  local cx, cy = bx - ax, by - ay
-  local function side(x, y) return cx * (y - ay) - cy * (x - ax) end
+-- Does the closing path (points from the last sample to the first: the chord between them,
+-- or the way the closing pieces go round) cross a step of the samples' polygon in its
+-- middle (a tenth of its length from either end at least), a step more than a tenth of
+-- the samples (and 2) from either end? Crossings near the ends are a closed scan's overlap,
+-- or noise (a sparse noisy rounded rectangle's closing step crosses its neighbour's).
+local function path_crosses(P, path)
+  local m, total = #P, 0
   local skip = math.max(2, m // 10)
-  local px, py = P:get(skip)
-  local sp = side(px, py)
-  for i = skip + 1, m - skip do
-    local qx, qy = P:get(i)
-    local sq = side(qx, qy)
-    if (sp > 0 and sq < 0) or (sp < 0 and sq > 0) then
-      -- the step crosses the chord's line at fraction f of the step: where along the chord?
-      local f = sp / (sp - sq)
-      local x, y = px + f * (qx - px), py + f * (qy - py)
-      local along = ((x - ax) * cx + (y - ay) * cy) / (cx * cx + cy * cy)
-      if along > 0.1 and along < 0.9 then return true end
+  for k = 1, #path - 1 do
+    total = total + math.sqrt((path[k + 1][1] - path[k][1]) ^ 2 + (path[k + 1][2] - path[k][2]) ^ 2)
+  end
+  if not (total > 0) then return false end
+  local before = 0 -- the path's length before segment k
+  for k = 1, #path - 1 do
+    local a, b = path[k], path[k + 1]
+    local cx, cy = b[1] - a[1], b[2] - a[2]
+    local len = math.sqrt(cx * cx + cy * cy)
+    local function side(x, y) return cx * (y - a[2]) - cy * (x - a[1]) end
+    local px, py = P:get(skip)
+    local sp = side(px, py)
+    for i = skip + 1, m - skip do
+      local qx, qy = P:get(i)
+      local sq = side(qx, qy)
+      if len > 0 and ((sp > 0 and sq < 0) or (sp < 0 and sq > 0)) then
+        -- the step crosses the segment's line at fraction f of the step: where along it?
+        local f = sp / (sp - sq)
+        local x, y = px + f * (qx - px), py + f * (qy - py)
+        local along = ((x - a[1]) * cx + (y - a[2]) * cy) / (len * len)
+        local at = (before + along * len) / total
+        if along >= 0 and along <= 1 and at > 0.1 and at < 0.9 then return true end
+      end
+      px, py, sp = qx, qy, sq
     end
-    px, py, sp = qx, qy, sq
+    before = before + len
   end
   return false
 end
@@ -127,17 +137,22 @@ function M.decide(P, ctx)
   -- lines and arcs that meet across the gap close it; without a doubt when the gap is like
   -- the other steps (at most CLOSING_CLEAR times the longest): across a longer one, an open
   -- run's end sides may meet as well (three sides of a pentagon, an arc of 270 degrees)
+  local path = { { P:get(m) }, { P:get(1) } } -- how the section would close
   if (not closed_ or not clear) and P:dim() == 2 and m >= 6 then
     local pieces, exact = sharp.closing_pieces(P, gap)
     if pieces then
       closed_ = true
       clear = gap <= CLOSING_CLEAR * all[#all] and not sharp.closure_unsampled(P, pieces)
       if exact and P == all_points then ctx.cache.exact_pieces = pieces end
+      path = sharp.closing_path(P, pieces)
     end
   end
   -- a closing chord across the samples' own polygon closes no outline (a spiral's ends lie
-  -- on different turns): open, with the doubt said
-  local crossing = closed_ and P:dim() == 2 and gap > 1.5 * hmed and chord_crosses(P)
+  -- on different turns): open, with the doubt said. Where closing pieces were found, the
+  -- way they go round is what must not cross (the chord of an E of 3 uneven samples per
+  -- side, from the middle of its back to the middle of its foot, crossed its lower arm; the
+  -- back and the foot meet at its corner: opened, it was 170 times the floor off)
+  local crossing = closed_ and P:dim() == 2 and gap > 1.5 * hmed and path_crosses(P, path)
   if crossing then closed_, clear = false, false end
   ctx.settings.closed = closed_
   ctx.closing = { gap = gap, hloc = hloc } -- decided here (see M.doubt)

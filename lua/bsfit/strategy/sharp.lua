@@ -471,6 +471,25 @@ local function closing_length(P, pieces)
   return len + along(pieces[ib], pieces[ib].start, b)
 end
 
+-- The way the pieces of a closed segmentation go from the last sample to the first: the
+-- last sample, the ends of the pieces between (each piece's end, round its model or
+-- across a bridge: straight from join to join), the first sample. One piece holding both
+-- samples: the chord between them.
+function M.closing_path(P, pieces)
+  local m, n = #P, #pieces
+  local path = { { P:get(m) } }
+  local ia, ib = closing_ends(m, pieces)
+  if ia and ib and ia ~= ib then
+    local i = ia
+    while i ~= ib do
+      path[#path + 1] = pieces[i]["end"]
+      i = i % n + 1
+    end
+  end
+  path[#path + 1] = { P:get(1) }
+  return path
+end
+
 -- the longest step between the samples of piece p (of a section of m samples); in C, as
 -- the closing pieces of a dense section hold most of its samples
 local function piece_longest_step(P, m, p)
