@@ -36,6 +36,18 @@ local function piece_samples(P, p, w, skip)
   return q, ww
 end
 
+-- the RMS and largest distance of the points pts to the circle of centre c and radius r
+-- (rms and max when there are none)
+local function circle_residuals(pts, c, r, rms, max)
+  if #pts == 0 then return rms, max end
+  local q2, worst = 0, 0
+  for _, x in ipairs(pts) do
+    local d = math.abs(dist(x, c) - r)
+    q2, worst = q2 + d * d, math.max(worst, d)
+  end
+  return math.sqrt(q2 / #pts), worst
+end
+
 -- chord parameters in [0, 1] of the polyline pts; its length
 local function chord_params(pts)
   local u, acc = { 0 }, 0
@@ -292,13 +304,7 @@ local function fillets(P, pieces, o)
             off_model(p, fa, fb, cc) <= off_model(p, p.start, p["end"], through) + slack then
           A["end"], p.start, p["end"], B.start = fa, fa, fb, fb
           p.centre, p.radius, p.sweep = cc, r, sweep
-          local q2, worst = 0, 0
-          local pts = piece_samples(P, p)
-          for _, x in ipairs(pts) do
-            local d = math.abs(dist(x, cc) - r)
-            q2, worst = q2 + d * d, math.max(worst, d)
-          end
-          if #pts > 0 then p.rms, p.max = math.sqrt(q2 / #pts), worst end
+          p.rms, p.max = circle_residuals(piece_samples(P, p), cc, r, p.rms, p.max)
         end
       end
     end
@@ -629,12 +635,7 @@ function M.as_drawn(P, pieces, skip)
       local c, r = p.drawn.centre, p.drawn.radius
       q.fit_centre, q.fit_radius = p.centre, p.radius
       q.centre, q.radius, q.sweep = { c[1], c[2] }, r, p.drawn.sweep
-      local q2, worst, pts = 0, 0, piece_samples(P, p, nil, skip)
-      for _, x in ipairs(pts) do
-        local d = math.abs(dist(x, c) - r)
-        q2, worst = q2 + d * d, math.max(worst, d)
-      end
-      if #pts > 0 then q.rms, q.max = math.sqrt(q2 / #pts), worst end
+      q.rms, q.max = circle_residuals(piece_samples(P, p, nil, skip), c, r, p.rms, p.max)
     end
     out[i] = q
   end
