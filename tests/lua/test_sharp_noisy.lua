@@ -68,6 +68,22 @@ local function run_case(c)
       end
     end
   end
+  -- a free run reports its samples' distances to the curve (it reported none: the
+  -- segmentation fits it no model)
+  for i, p in ipairs(rep.pieces or {}) do
+    T.ok(p.rms and p.max, ("%s: piece %d (%s) reports no rms or max"):format(what, i, p.kind))
+    if p.kind == "free" and p.count > 0 and p.rms and p.max then
+      local q2, worst = 0, 0
+      for k = 0, p.count - 1 do
+        local x = pts[(p.first - 1 + k) % #pts + 1]
+        local _, d = C:closest(x[1], x[2])
+        q2, worst = q2 + d * d, math.max(worst, d)
+      end
+      T.ok(math.abs(worst - p.max) <= 1e-7 * c.size and math.abs(math.sqrt(q2 / p.count) - p.rms) <= 1e-7 * c.size,
+           ("%s: free run %d reports max %.6g rms %.6g, its samples %.6g %.6g"):format(what, i, p.max, p.rms,
+             worst, math.sqrt(q2 / p.count)))
+    end
+  end
   T.eq(r.opposed, 0, what .. ": a tangent join whose pieces run opposite ways (a cusp)")
   return r
 end

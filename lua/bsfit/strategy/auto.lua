@@ -157,7 +157,7 @@ function M.report(ctx)
   rep.crossings = ctx.loops or 0
   if pieces.taken(ctx) then
     local t = common.trusted(ctx)
-    rep.pieces = sharp.as_drawn(ctx.P, ctx.segment, t and t.isout)
+    rep.pieces = sharp.as_drawn(ctx.P, ctx.segment, t and t.isout, rep.residuals)
     rep.pieces_sigma = ctx.segment_sigma
   end
   rep.pieces_rejected = ctx.sharp_rejected

@@ -623,9 +623,24 @@ end
 -- centre moves along their bisector, by many sigma on a short arc) and its rms and max
 -- its samples' distances to that circle; the fitted circle stays in fit_centre and
 -- fit_radius. Pieces never drawn (the sharp.assemble that made the curve was not run on
--- them) are copied as they are. skip: sample indices left out of rms and max (down-weighted
--- points, as in sharp.assemble's options).
-function M.as_drawn(P, pieces, skip)
+-- them) are copied as they are. A free run's rms and max (the segmentation's are 0: it
+-- fits no model) are its samples' distances to the curve, from `distances` (each sample's,
+-- a Lua array: sharp.distances of the curve) when given. skip: sample indices left out of
+-- rms and max (down-weighted points, as in sharp.assemble's options).
+local function free_residuals(P, p, distances, skip)
+  local m, q2, worst, n = #P, 0, 0, 0
+  for k = 0, p.count - 1 do
+    local i = (p.first - 1 + k) % m + 1
+    if not (skip and skip[i]) then
+      local d = distances[i]
+      q2, worst, n = q2 + d * d, math.max(worst, d), n + 1
+    end
+  end
+  if n == 0 then return p.rms, p.max end
+  return math.sqrt(q2 / n), worst
+end
+
+function M.as_drawn(P, pieces, skip, distances)
   local out = {}
   for i, p in ipairs(pieces) do
     local q = {}
@@ -636,6 +651,8 @@ function M.as_drawn(P, pieces, skip)
       q.fit_centre, q.fit_radius = p.centre, p.radius
       q.centre, q.radius, q.sweep = { c[1], c[2] }, r, p.drawn.sweep
       q.rms, q.max = circle_residuals(piece_samples(P, p, nil, skip), c, r, p.rms, p.max)
+    elseif p.kind == "free" and p.count > 0 and distances then
+      q.rms, q.max = free_residuals(P, p, distances, skip)
     end
     out[i] = q
   end
