@@ -617,16 +617,8 @@ function M.assemble(P, pieces, o)
   return C
 end
 
--- The pieces as their curve draws them, for the report: copies in which an arc's centre,
--- radius and sweep are those of the arc drawn (under noise its ends lie within the
--- tolerance of its fitted circle, not on it, and the arc is drawn through them: its
--- centre moves along their bisector, by many sigma on a short arc) and its rms and max
--- its samples' distances to that circle; the fitted circle stays in fit_centre and
--- fit_radius. Pieces never drawn (the sharp.assemble that made the curve was not run on
--- them) are copied as they are. A free run's rms and max (the segmentation's are 0: it
--- fits no model) are its samples' distances to the curve, from `distances` (each sample's,
--- a Lua array: sharp.distances of the curve) when given. skip: sample indices left out of
--- rms and max (down-weighted points, as in sharp.assemble's options).
+-- the RMS and largest distance to the curve of free run p's samples (distances: each
+-- sample's; skip: indices left out), p's own when none is left
 local function free_residuals(P, p, distances, skip)
   local m, q2, worst, n = #P, 0, 0, 0
   for k = 0, p.count - 1 do
@@ -640,6 +632,16 @@ local function free_residuals(P, p, distances, skip)
   return math.sqrt(q2 / n), worst
 end
 
+-- The pieces as their curve draws them, for the report: copies in which an arc's centre,
+-- radius and sweep are those of the arc drawn (under noise its ends lie within the
+-- tolerance of its fitted circle, not on it, and the arc is drawn through them: its
+-- centre moves along their bisector, by many sigma on a short arc) and its rms and max
+-- its samples' distances to that circle; the fitted circle stays in fit_centre and
+-- fit_radius. Pieces never drawn (the sharp.assemble that made the curve was not run on
+-- them) are copied as they are. A free run's rms and max (the segmentation fits it no
+-- model; a bend made by M.soften had none) are its samples' distances to the curve, from
+-- `distances` (each sample's, a Lua array: sharp.distances of the curve) when given. skip: sample indices left out of
+-- rms and max (down-weighted points, as in sharp.assemble's options).
 function M.as_drawn(P, pieces, skip, distances)
   local out = {}
   for i, p in ipairs(pieces) do
