@@ -549,6 +549,7 @@ static size_t finish_pieces(const seg_section *s, bsfit_piece *p, seg_model *md,
     return 1;
   }
   if (np == 1 && s->closed && p[0].kind == FREE) {
+    p[0].rms = p[0].max = 0;
     memcpy(p[0].start, sample(s, p[0].first), sizeof p[0].start);
     memcpy(p[0].end, p[0].start, sizeof p[0].end);
     p[0].join = BSFIT_JOIN_TANGENT;
@@ -567,6 +568,9 @@ static size_t finish_pieces(const seg_section *s, bsfit_piece *p, seg_model *md,
   for (i = 0; i < np; i++) {
     if (p[i].kind == LINE) set_line_ends(&p[i], &md[i]);
     if (p[i].kind == ARC) set_arc_sweep(&p[i], &md[i], 0);
+    /* a free run fits no model: nothing to measure its samples against (a line or an arc
+    ** made free kept its residual, or infinity where its fit had failed) */
+    if (p[i].kind == FREE) p[i].rms = p[i].max = 0;
   }
   for (i = 0; i < np; i++) {
     const bsfit_piece *q = &p[(i + np - 1) % np];
