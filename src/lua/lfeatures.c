@@ -13,7 +13,7 @@
 ** last =, count = (1-based samples; last < first when it wraps), start = {x, y},
 ** ["end"] = {x, y}, t_start =, t_end = (unit tangents), centre =, radius =, sweep =,
 ** radius_se = (arcs), turn = (degrees) and evidence = (sigma^2) at corner joins, rms =, max =
-** (distances of its samples to its model)}.
+** (distances of its samples to its model; 0 for a free run)}.
 **   bs.geom.segment_sigma(P [, {closed = true, max = 0}]) --> the noise of a section of
 ** lines and arcs, read off their own residuals (levels up to `max`; 0: 5% of the size;
 ** at most 500 evenly spread samples are read).
