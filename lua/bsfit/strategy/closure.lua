@@ -24,8 +24,13 @@ local function turn(P, i, j, k)
 end
 
 -- A closing gap longer than CLOSING_CLEAR times the longest other step leaves a doubt
--- however it is closed (by the spacing or by the pieces; see M.decide).
-local CLOSING_CLEAR = 1.5
+-- however it is closed (by the spacing or by the pieces; see M.decide): the gap is then the
+-- longest step of the polygon by a margin, as in an open run and in a closed section
+-- sampled as unevenly. 1.5 closed open arcs with gaps of 1.2 to 1.5 steps without a doubt,
+-- and 77 of 600 open parts of the sweep's outlines (53 at 1.2, 38 at 1.0); 1.0 doubted
+-- evenly sampled closed sections (a circle of 24 exact samples), 1.2 the closed sections of
+-- those 600 parts 26 times (20 at 1.5).
+local CLOSING_CLEAR = 1.2
 
 -- Open or closed from the gap alone: closed, clear (see M.decide). hmax: the longest step.
 local function gap_decision(P, gap, h, hmax)
