@@ -46,33 +46,21 @@ local function run_case(c)
   for k, v in pairs(found) do r[k] = v end
   r.kink, r.kinks, r.joins, r.opposed = shapes.tangent_kinks(C, rep, KINK)
   -- every arc reports the circle drawn: its ends and the curve at the middle of its range
-  -- lie on it, and its rms and max are its samples' distances to it (a fillet's were its
-  -- model's; any other arc reported its fitted circle, which its drawn ends lie within the
-  -- tolerance of only: up to 31 sigma off on the sweep, 5 of its 270 arcs by more than 3)
+  -- lie on it (a non-fillet arc reported its fitted circle, which its drawn ends lie within
+  -- the tolerance of only: up to 31 sigma off on the sweep, 5 of its 270 arcs by more than
+  -- 3); every piece's rms and max are its samples' distances to the curve (a free run's
+  -- were 0, a softened bend's missing, an arc's to its fitted circle)
+  local a, b = C:domain()
   for i, p in ipairs(rep.pieces or {}) do
-    if p.kind == "arc" and p.count > 0 then
-      local q2, worst = 0, 0
-      for k = 0, p.count - 1 do
-        local x = pts[(p.first - 1 + k) % #pts + 1]
-        local d = math.abs(dist(x, p.centre) - p.radius)
-        q2, worst = q2 + d * d, math.max(worst, d)
-      end
-      T.ok(math.abs(worst - p.max) <= 1e-9 * c.size and math.abs(math.sqrt(q2 / p.count) - p.rms) <= 1e-9 * c.size,
-           ("%s: arc %d reports max %.6g rms %.6g, its samples %.6g %.6g"):format(what, i, p.max, p.rms,
-             worst, math.sqrt(q2 / p.count)))
-      local a, b = C:domain()
+    if p.kind == "arc" then
       local mid = { C:eval(a + (b - a) * (p.range[1] + p.range[2]) / 2) }
       for _, x in ipairs { p.start, p["end"], mid } do
         T.ok(math.abs(dist(x, p.centre) - p.radius) <= 1e-9 * c.size,
              ("%s: arc %d drawn %.3g off the circle it reports"):format(what, i, math.abs(dist(x, p.centre) - p.radius)))
       end
     end
-  end
-  -- a free run reports its samples' distances to the curve (it reported none: the
-  -- segmentation fits it no model)
-  for i, p in ipairs(rep.pieces or {}) do
     T.ok(p.rms and p.max, ("%s: piece %d (%s) reports no rms or max"):format(what, i, p.kind))
-    if p.kind == "free" and p.count > 0 and p.rms and p.max then
+    if p.count > 0 and p.rms and p.max then
       local q2, worst = 0, 0
       for k = 0, p.count - 1 do
         local x = pts[(p.first - 1 + k) % #pts + 1]
@@ -80,8 +68,8 @@ local function run_case(c)
         q2, worst = q2 + d * d, math.max(worst, d)
       end
       T.ok(math.abs(worst - p.max) <= 1e-7 * c.size and math.abs(math.sqrt(q2 / p.count) - p.rms) <= 1e-7 * c.size,
-           ("%s: free run %d reports max %.6g rms %.6g, its samples %.6g %.6g"):format(what, i, p.max, p.rms,
-             worst, math.sqrt(q2 / p.count)))
+           ("%s: %s %d reports max %.6g rms %.6g, its samples %.6g %.6g"):format(what, p.kind, i, p.max,
+             p.rms, worst, math.sqrt(q2 / p.count)))
     end
   end
   T.eq(r.opposed, 0, what .. ": a tangent join whose pieces run opposite ways (a cusp)")

@@ -617,9 +617,9 @@ function M.assemble(P, pieces, o)
   return C
 end
 
--- the RMS and largest distance to the curve of free run p's samples (distances: each
--- sample's; skip: indices left out), p's own when none is left
-local function free_residuals(P, p, distances, skip)
+-- the RMS and largest of piece p's samples' distances (distances: each sample's, a Lua
+-- array; skip: indices left out), p's own when none is left
+local function piece_residuals(P, p, distances, skip)
   local m, q2, worst, n = #P, 0, 0, 0
   for k = 0, p.count - 1 do
     local i = (p.first - 1 + k) % m + 1
@@ -635,13 +635,14 @@ end
 -- The pieces as their curve draws them, for the report: copies in which an arc's centre,
 -- radius and sweep are those of the arc drawn (under noise its ends lie within the
 -- tolerance of its fitted circle, not on it, and the arc is drawn through them: its
--- centre moves along their bisector, by many sigma on a short arc) and its rms and max
--- its samples' distances to that circle; the fitted circle stays in fit_centre and
--- fit_radius. Pieces never drawn (the sharp.assemble that made the curve was not run on
--- them) are copied as they are. A free run's rms and max (the segmentation fits it no
--- model; a bend made by M.soften had none) are its samples' distances to the curve, from
--- `distances` (each sample's, a Lua array: sharp.distances of the curve) when given. skip: sample indices left out of
--- rms and max (down-weighted points, as in sharp.assemble's options).
+-- centre moves along their bisector, by many sigma on a short arc; the fitted circle stays
+-- in fit_centre and fit_radius), and every piece's rms and max are its samples' distances
+-- to the curve, from `distances` (each sample's, a Lua array: sharp.distances of the
+-- curve, the measure step's) when given (the segmentation's are to its models: a free run
+-- has none, a bend made by M.soften had no rms at all, and an arc's model is not the arc
+-- drawn). Pieces never drawn (the sharp.assemble that made the curve was not run on them)
+-- keep their centre. skip: sample indices left out of rms and max (down-weighted points,
+-- as in sharp.assemble's options).
 function M.as_drawn(P, pieces, skip, distances)
   local out = {}
   for i, p in ipairs(pieces) do
@@ -649,13 +650,11 @@ function M.as_drawn(P, pieces, skip, distances)
     for k, v in pairs(p) do q[k] = v end
     q.drawn = nil
     if p.kind == "arc" and p.drawn then
-      local c, r = p.drawn.centre, p.drawn.radius
+      local c = p.drawn.centre
       q.fit_centre, q.fit_radius = p.centre, p.radius
-      q.centre, q.radius, q.sweep = { c[1], c[2] }, r, p.drawn.sweep
-      q.rms, q.max = circle_residuals(piece_samples(P, p, nil, skip), c, r, p.rms, p.max)
-    elseif p.kind == "free" and p.count > 0 and distances then
-      q.rms, q.max = free_residuals(P, p, distances, skip)
+      q.centre, q.radius, q.sweep = { c[1], c[2] }, p.drawn.radius, p.drawn.sweep
     end
+    if p.count > 0 and distances then q.rms, q.max = piece_residuals(P, p, distances, skip) end
     out[i] = q
   end
   return out
