@@ -88,26 +88,18 @@ static int keeps_lines(const seg_section *s, const seg_neighbours *nb, seg_fille
          bsfit__line_runs_forward(s, &t->f, &t->mf, &t->b, &t->mb, nb->after, nb->mafter);
 }
 
-/* the fillet between what is left of two lines (a, b) on the ka + kb samples between them */
+/* the fillet between what is left of two lines (a, b) on the ka + kb samples between them,
+** settled, its lines still running forwards */
 static int corner_fillet(const seg_section *s, const line_left *a, const line_left *b, size_t ka,
                          size_t kb, const seg_neighbours *nb, seg_fillet_try *t) {
-  double V[2], u[2], k, r, rss, info, r0;
-  const double *q;
-  t->a = a->p, t->ma = a->md, t->b = b->p, t->mb = b->md;
-  if (!bsfit__fillet_frame(&t->ma, &t->mb, V, u, &k) || !(k - 1 > 1e-6)) return 0;
-  memset(&t->f, 0, sizeof t->f);
-  t->f.kind = t->mf.kind = ARC;
-  t->f.first = (a->p.first + a->p.count) % s->m;
-  t->f.count = ka + kb;
-  t->mf.orient = bsfit__turn_sign(&t->ma, &t->mb) > 0 ? 1.0 : -1.0;
-  q = sample(s, t->f.first + t->f.count / 2);
-  r0 = hypot(q[0] - V[0], q[1] - V[1]) / (k - 1);
-  r = bsfit__fillet_radius(s, &t->f, V, u, k, r0, &rss, &info);
-  if (!(r > 0)) return 0;
-  bsfit__set_fillet(s, &t->a, &t->ma, &t->f, &t->mf, &t->b, &t->mb, V, u, k, r);
-  if (!(t->f.max <= s->tol) || !bsfit__settle_fillet(s, &t->a, &t->ma, &t->f, &t->mf, &t->b, &t->mb))
-    return 0;
-  return keeps_lines(s, nb, t);
+  bsfit_piece f;
+  seg_model mf;
+  memset(&f, 0, sizeof f), memset(&mf, 0, sizeof mf);
+  f.first = (a->p.first + a->p.count) % s->m;
+  f.count = ka + kb;
+  return bsfit__fillet_try(s, &a->p, &a->md, &f, &mf, &b->p, &b->md, 0, t) &&
+         bsfit__settle_fillet(s, &t->a, &t->ma, &t->f, &t->mf, &t->b, &t->mb) &&
+         keeps_lines(s, nb, t);
 }
 
 /* The best fillet at the corner of lines A and B, on up to CORNER_TAKE samples of each; its
@@ -124,8 +116,10 @@ static double best_corner_fillet(const seg_section *s, const bsfit_piece *A, con
   for (ka = 0; ka <= CORNER_TAKE; ka++)
     for (kb = 0; kb <= CORNER_TAKE; kb++)
       if (ka + kb >= CORNER_LEAST && a[ka].ok && b[kb].ok &&
-          corner_fillet(s, &a[ka], &b[kb], ka, kb, nb, &t) && bsfit__fillet_try_rss(&t) < best_rss)
-        *best = t, best_rss = bsfit__fillet_try_rss(&t);
+          corner_fillet(s, &a[ka], &b[kb], ka, kb, nb, &t)) {
+        double rss = bsfit__fillet_try_rss(&t);
+        if (rss < best_rss) *best = t, best_rss = rss;
+      }
   return best_rss;
 }
 

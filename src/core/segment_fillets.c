@@ -4,8 +4,8 @@
 ** with its circle tangent to both (one unknown, its radius), and takes the samples of the
 ** lines past its tangent points; under noise, the cover's misreadings of a fillet (a short
 ** line between two corners, an arc that misses the tangency) become that fillet first
-** (docs/auto.md, step 8 "Fillets"). The fillet's geometry here (its frame, radius, how it
-** is set and settled) is shared with segment_corner_fillets.c and segment_fillet_se.c.
+** (docs/auto.md, step 8 "Fillets"). The fillet's geometry here (its frame, a try of it, how
+** it is settled) is shared with segment_corner_fillets.c and segment_fillet_se.c.
 */
 #include "segment_internal.h"
 
@@ -13,11 +13,11 @@
 #include <stddef.h>
 #include <string.h>
 
-/* segment_internal.h. The radius of the circle tangent to two lines (its centre V + u k r) that fits F's
+/* The radius of the circle tangent to two lines (its centre V + u k r) that fits F's
 ** samples best: Gauss-Newton on the geometric distances, from r. Its residual sum of
 ** squares into *rss, and the information of the radius (sum of the squared derivatives of
 ** the distances: its variance is sigma^2 over it) into *info; -1 when it fails. */
-double bsfit__fillet_radius(const seg_section *s, const bsfit_piece *F, const double *V,
+static double fillet_radius(const seg_section *s, const bsfit_piece *F, const double *V,
                             const double *u, double k, double r, double *rss, double *info) {
   int it;
   size_t j;
@@ -40,6 +40,11 @@ double bsfit__fillet_radius(const seg_section *s, const bsfit_piece *F, const do
     if (fabs(step) <= 1e-15 * r) break;
   }
   return r;
+}
+
+/* the cross product of two lines' directions: the sign of the turn from a to b */
+static double turn_sign(const seg_model *a, const seg_model *b) {
+  return a->line.d[0] * b->line.d[1] - a->line.d[1] * b->line.d[0];
 }
 
 /* whether a point runs from `from` to `to` forwards along direction d */
@@ -77,9 +82,9 @@ int bsfit__fillet_frame(const seg_model *ma, const seg_model *mb, double *V, dou
   return 1;
 }
 
-/* segment_internal.h. F's circle becomes the one of radius r tangent to A and B (frame V, u, k): its model,
+/* F's circle becomes the one of radius r tangent to A and B (frame V, u, k): its model,
 ** centre, radius, ends on both lines, tangents there, and its residual. */
-void bsfit__set_fillet(const seg_section *s, bsfit_piece *A, const seg_model *ma, bsfit_piece *F,
+static void set_fillet(const seg_section *s, bsfit_piece *A, const seg_model *ma, bsfit_piece *F,
                        seg_model *mf, bsfit_piece *B, const seg_model *mb, const double *V,
                        const double *u, double k, double r) {
   double c[2], f[2], t[2], rms = 0;
@@ -109,9 +114,9 @@ static void refit_fillet(const seg_section *s, bsfit_piece *A, const seg_model *
                          seg_model *mf, bsfit_piece *B, const seg_model *mb) {
   double V[2], u[2], k, r, rss, info;
   if (!bsfit__fillet_frame(ma, mb, V, u, &k)) return;
-  r = bsfit__fillet_radius(s, F, V, u, k, mf->circle.r, &rss, &info);
+  r = fillet_radius(s, F, V, u, k, mf->circle.r, &rss, &info);
   if (!(r > 0) || rss - F->rms * F->rms * (double)F->count > 9.0 * s->unit * s->unit) return;
-  bsfit__set_fillet(s, A, ma, F, mf, B, mb, V, u, k, r);
+  set_fillet(s, A, ma, F, mf, B, mb, V, u, k, r);
 }
 
 /* Samples of line A past its tangent point with fillet F (their feet beyond A's end along
@@ -162,10 +167,32 @@ int bsfit__settle_fillet(const seg_section *s, bsfit_piece *A, seg_model *ma, bs
   if (!(A->max <= s->tol) || !(B->max <= s->tol) || !bsfit__fillet_frame(ma, mb, V, u, &k) ||
       !(k - 1 > 1e-6))
     return 0;
-  r = bsfit__fillet_radius(s, F, V, u, k, mf->circle.r, &rss, &info);
+  r = fillet_radius(s, F, V, u, k, mf->circle.r, &rss, &info);
   if (!(r > 0)) return 0;
-  bsfit__set_fillet(s, A, ma, F, mf, B, mb, V, u, k, r);
+  set_fillet(s, A, ma, F, mf, B, mb, V, u, k, r);
   return F->max <= s->tol;
+}
+
+/* segment_internal.h. The fillet tangent to lines A and B on F's samples, its radius
+** fitted from r0 (from F's middle sample when r0 is 0), set on copies of the three pieces,
+** not yet settled: 0 when the lines frame no fillet or a sample of F lies past the
+** tolerance of it. */
+int bsfit__fillet_try(const seg_section *s, const bsfit_piece *A, const seg_model *ma,
+                      const bsfit_piece *F, const seg_model *mf, const bsfit_piece *B,
+                      const seg_model *mb, double r0, seg_fillet_try *t) {
+  double V[2], u[2], k, r, rss, info;
+  if (!bsfit__fillet_frame(ma, mb, V, u, &k) || !(k - 1 > 1e-6)) return 0;
+  if (!(r0 > 0)) {
+    const double *q = sample(s, F->first + F->count / 2);
+    r0 = hypot(q[0] - V[0], q[1] - V[1]) / (k - 1);
+  }
+  r = fillet_radius(s, F, V, u, k, r0, &rss, &info);
+  if (!(r > 0)) return 0;
+  t->a = *A, t->f = *F, t->b = *B, t->ma = *ma, t->mf = *mf, t->mb = *mb;
+  t->mf.kind = t->f.kind = ARC;
+  t->mf.orient = turn_sign(ma, mb) > 0 ? 1.0 : -1.0;
+  set_fillet(s, &t->a, &t->ma, &t->f, &t->mf, &t->b, &t->mb, V, u, k, r);
+  return t->f.max <= s->tol;
 }
 
 /* X, between lines A and B, becomes the fillet tangent to both (its radius fitted from
@@ -180,21 +207,9 @@ int bsfit__settle_fillet(const seg_section *s, bsfit_piece *A, seg_model *ma, bs
 ** trusted. */
 static int to_fillet(const seg_section *s, bsfit_piece *A, seg_model *ma, bsfit_piece *X,
                      seg_model *mx, bsfit_piece *B, seg_model *mb, double r0, double price) {
-  double V[2], u[2], k, r, rss, info, turn = bsfit__turn_sign(ma, mb);
   double most = fitted_rss(A) + fitted_rss(X) + fitted_rss(B) + price * s->unit * s->unit;
   seg_fillet_try t, settled;
-  if (!bsfit__fillet_frame(ma, mb, V, u, &k) || !(k - 1 > 1e-6)) return 0;
-  if (!(r0 > 0)) {
-    const double *q = sample(s, X->first + X->count / 2);
-    r0 = hypot(q[0] - V[0], q[1] - V[1]) / (k - 1);
-  }
-  r = bsfit__fillet_radius(s, X, V, u, k, r0, &rss, &info);
-  if (!(r > 0)) return 0;
-  t.a = *A, t.f = *X, t.b = *B, t.ma = *ma, t.mf = *mx, t.mb = *mb;
-  t.mf.kind = t.f.kind = ARC;
-  t.mf.orient = turn > 0 ? 1.0 : -1.0;
-  bsfit__set_fillet(s, &t.a, &t.ma, &t.f, &t.mf, &t.b, &t.mb, V, u, k, r);
-  if (!(t.f.max <= s->tol)) return 0;
+  if (!bsfit__fillet_try(s, A, ma, X, mx, B, mb, r0, &t)) return 0;
   settled = t;
   if (bsfit__settle_fillet(s, &settled.a, &settled.ma, &settled.f, &settled.mf, &settled.b, &settled.mb) &&
       bsfit__fillet_try_rss(&settled) <= most)
@@ -229,10 +244,10 @@ void bsfit__cover_fillets(const seg_section *s, bsfit_piece *p, seg_model *md, s
     size_t ia = (i + np - 1) % np, ib = (i + 1) % np;
     seg_model *ma = &md[ia], *mb = &md[ib];
     const seg_model *mx = &md[i];
-    double turn = bsfit__turn_sign(ma, mb);
+    double turn = turn_sign(ma, mb);
     if (!s->closed && (i == 0 || i + 1 == np)) continue;
     if (p[ia].kind != LINE || p[ib].kind != LINE) continue;
-    if (p[i].kind == LINE && bsfit__turn_sign(ma, mx) * turn > 0 && bsfit__turn_sign(mx, mb) * turn > 0)
+    if (p[i].kind == LINE && turn_sign(ma, mx) * turn > 0 && turn_sign(mx, mb) * turn > 0)
       to_fillet(s, &p[ia], ma, &p[i], &md[i], &p[ib], mb, 0, 2.0);
     else if (p[i].kind == ARC && mx->orient * turn > 0 &&
         !(touches(s, ma, &mx->circle) && touches(s, mb, &mx->circle)))

@@ -192,28 +192,11 @@ int bsfit__line_runs_forward(const seg_section *s, const bsfit_piece *prev, cons
                              const bsfit_piece *L, const seg_model *ml, const bsfit_piece *next,
                              const seg_model *mnext);
 
-/* segment_fillets.c: the geometry of a fillet between lines A and B (models ma, mb), shared
-** by the fillet steps. Its frame: the lines' corner V, the unit bisector u into the turn and
-** k = 1 / sin(half the inner angle), the circle of radius r tangent to both centred at
-** V + u k r (0 when the lines are parallel or turn back); */
+/* segment_fillets.c: the frame of a fillet between lines A and B (models ma, mb): the
+** lines' corner V, the unit bisector u into the turn and k = 1 / sin(half the inner angle),
+** the circle of radius r tangent to both centred at V + u k r (0 when the lines are
+** parallel or turn back) */
 int bsfit__fillet_frame(const seg_model *ma, const seg_model *mb, double *V, double *u, double *k);
-/* the radius of that circle that fits F's samples best, from r (its residual into *rss, the
-** radius's information into *info; -1 when it fails); */
-double bsfit__fillet_radius(const seg_section *s, const bsfit_piece *F, const double *V,
-                            const double *u, double k, double r, double *rss, double *info);
-/* F made that circle of radius r, its ends and A's and B's on it; */
-void bsfit__set_fillet(const seg_section *s, bsfit_piece *A, const seg_model *ma, bsfit_piece *F,
-                       seg_model *mf, bsfit_piece *B, const seg_model *mb, const double *V,
-                       const double *u, double k, double r);
-/* F takes the lines' samples past its tangent points, all refitted; 0 where a piece then
-** leaves its tolerance */
-int bsfit__settle_fillet(const seg_section *s, bsfit_piece *A, seg_model *ma, bsfit_piece *F,
-                         seg_model *mf, bsfit_piece *B, seg_model *mb);
-
-/* the cross product of two lines' directions: the sign of the turn from a to b */
-static inline double bsfit__turn_sign(const seg_model *a, const seg_model *b) {
-  return a->line.d[0] * b->line.d[1] - a->line.d[1] * b->line.d[0];
-}
 
 /* a fillet between two lines as it would be made: the three pieces and their models */
 typedef struct seg_fillet_try {
@@ -224,6 +207,18 @@ typedef struct seg_fillet_try {
 static inline double bsfit__fillet_try_rss(const seg_fillet_try *t) {
   return fitted_rss(&t->a) + fitted_rss(&t->f) + fitted_rss(&t->b);
 }
+
+/* segment_fillets.c: t, the fillet tangent to lines A and B on F's samples (its radius
+** fitted from r0, or from F's middle sample when r0 is 0), set on copies of the three
+** pieces; 0 when the lines frame none or F's samples leave its tolerance */
+int bsfit__fillet_try(const seg_section *s, const bsfit_piece *A, const seg_model *ma,
+                      const bsfit_piece *F, const seg_model *mf, const bsfit_piece *B,
+                      const seg_model *mb, double r0, seg_fillet_try *t);
+
+/* segment_fillets.c: F (made the fillet between A and B) takes the lines' samples past its
+** tangent points, all refitted; 0 where a piece then leaves its tolerance */
+int bsfit__settle_fillet(const seg_section *s, bsfit_piece *A, seg_model *ma, bsfit_piece *F,
+                         seg_model *mf, bsfit_piece *B, seg_model *mb);
 
 /* segment_corner_fillets.c: under noise, a corner between two lines whose samples next to it fit
 ** the fillet tangent to both better by a price becomes that fillet (p and md have room for
