@@ -250,6 +250,14 @@ static size_t absorb_free_runs(const seg_section *s, bsfit_piece *p, seg_model *
   return np;
 }
 
+/* piece p (model md) becomes a free run of its samples: it fits no model, so nothing
+** measures its samples (rms and max 0, as bsfit_features.h says; a line or an arc made free
+** kept its residual, or infinity where its fit had failed) */
+static void make_free(bsfit_piece *p, seg_model *md) {
+  p->kind = md->kind = FREE;
+  p->rms = p->max = 0;
+}
+
 /* A line whose joins with its neighbours pass each other holds no stretch of its own
 ** between them: it becomes a free run of its samples. Two large arcs tangent to a short
 ** line either side of it put their tangent points past each other, and the line ran
@@ -264,7 +272,7 @@ static void free_backward_lines(const seg_section *s, bsfit_piece *p, seg_model 
     if (p[i].kind != LINE || np < 3) continue;
     if (!bsfit__line_runs_forward(s, first ? NULL : &p[ia], &md[ia], &p[i], &md[i],
                                   last ? NULL : &p[ib], &md[ib]))
-      p[i].kind = md[i].kind = FREE;
+      make_free(&p[i], &md[i]);
   }
 }
 
@@ -282,7 +290,7 @@ static void free_one_of_two_lines(const seg_section *s, bsfit_piece *p, seg_mode
       !bsfit__segment_meet(s, &p[1], &md[1], &p[0], &md[0], x))
     return;
   i = p[1].count < p[0].count ? 1 : 0;
-  p[i].kind = md[i].kind = FREE;
+  make_free(&p[i], &md[i]);
 }
 
 /* The ends of every piece; a free bridge (no samples) is inserted where two primitives
@@ -526,10 +534,10 @@ static size_t finish_pieces(const seg_section *s, bsfit_piece *p, seg_model *md,
       p[i].kind = md[i].kind = LINE;
       bsfit__segment_refit(s, &p[i], &md[i]);
     }
-    if (p[i].kind != FREE && !(p[i].max < HUGE_VAL)) p[i].kind = md[i].kind = FREE;
+    if (p[i].kind != FREE && !(p[i].max < HUGE_VAL)) make_free(&p[i], &md[i]);
     /* an arc goes round at most once (a closed section's whole circle closes that turn) */
     if (p[i].kind == ARC && arc_turn(s, &p[i], &md[i]) > 2 * PI * (1 + 1e-9))
-      p[i].kind = md[i].kind = FREE;
+      make_free(&p[i], &md[i]);
   }
   np = s->noisy ? absorb_strays(s, p, md, np) : absorb_free_runs(s, p, md, np);
   short_runs(s, p, md, np);
@@ -549,7 +557,6 @@ static size_t finish_pieces(const seg_section *s, bsfit_piece *p, seg_model *md,
     return 1;
   }
   if (np == 1 && s->closed && p[0].kind == FREE) {
-    p[0].rms = p[0].max = 0;
     memcpy(p[0].start, sample(s, p[0].first), sizeof p[0].start);
     memcpy(p[0].end, p[0].start, sizeof p[0].end);
     p[0].join = BSFIT_JOIN_TANGENT;
@@ -568,9 +575,6 @@ static size_t finish_pieces(const seg_section *s, bsfit_piece *p, seg_model *md,
   for (i = 0; i < np; i++) {
     if (p[i].kind == LINE) set_line_ends(&p[i], &md[i]);
     if (p[i].kind == ARC) set_arc_sweep(&p[i], &md[i], 0);
-    /* a free run fits no model: nothing to measure its samples against (a line or an arc
-    ** made free kept its residual, or infinity where its fit had failed) */
-    if (p[i].kind == FREE) p[i].rms = p[i].max = 0;
   }
   for (i = 0; i < np; i++) {
     const bsfit_piece *q = &p[(i + np - 1) % np];
