@@ -266,14 +266,9 @@ static void make_free(bsfit_piece *p, seg_model *md) {
 ** showed; 2 of 11487 lines of 3000 random filleted polygons, test_segment_corner_fillets). */
 static void free_backward_lines(const seg_section *s, bsfit_piece *p, seg_model *md, size_t np) {
   size_t i;
-  for (i = 0; i < np; i++) {
-    size_t ia = (i + np - 1) % np, ib = (i + 1) % np;
-    int first = !s->closed && i == 0, last = !s->closed && i + 1 == np;
-    if (p[i].kind != LINE || np < 3) continue;
-    if (!bsfit__line_runs_forward(s, first ? NULL : &p[ia], &md[ia], &p[i], &md[i],
-                                  last ? NULL : &p[ib], &md[ib]))
-      make_free(&p[i], &md[i]);
-  }
+  if (np < 3) return;
+  for (i = 0; i < np; i++)
+    if (p[i].kind == LINE && !bsfit__line_runs_forward_at(s, p, md, np, i)) make_free(&p[i], &md[i]);
 }
 
 /* Two lines that close a section by meeting at both joins meet at one point: both joins

@@ -265,6 +265,19 @@ static int meets_as_joined(const seg_section *s, const bsfit_piece *p, const seg
   return bsfit__segment_meet(s, &p[j], &md[j], &p[k], &md[k], x) == (int)p[k].join;
 }
 
+/* fillet i of the list p and its two lines, as they are; and put back */
+static seg_fillet_try fillet_of(const bsfit_piece *p, const seg_model *md, size_t np, size_t i) {
+  seg_fillet_try t;
+  size_t ia = (i + np - 1) % np, ib = (i + 1) % np;
+  t.a = p[ia], t.f = p[i], t.b = p[ib], t.ma = md[ia], t.mf = md[i], t.mb = md[ib];
+  return t;
+}
+
+static void put_fillet(bsfit_piece *p, seg_model *md, size_t np, size_t i, const seg_fillet_try *t) {
+  size_t ia = (i + np - 1) % np, ib = (i + 1) % np;
+  p[ia] = t->a, p[i] = t->f, p[ib] = t->b, md[ia] = t->ma, md[i] = t->mf, md[ib] = t->mb;
+}
+
 /* Fillet i takes the samples of its lines past its tangent points (claim_and_refit) and is
 ** refitted, unless the four joins of its lines (before, with it, after) no longer hold as
 ** they were placed: a join that no longer holds keeps the old models' place, off the
@@ -273,24 +286,30 @@ static int meets_as_joined(const seg_section *s, const bsfit_piece *p, const seg
 static void claim_if_joins_hold(const seg_section *s, bsfit_piece *p, seg_model *md, size_t np,
                                 size_t i) {
   size_t ia = (i + np - 1) % np, ib = (i + 1) % np, iaa = (ia + np - 1) % np;
-  bsfit_piece A = p[ia], F = p[i], B = p[ib];
-  seg_model ma = md[ia], mf = md[i], mb = md[ib];
+  seg_fillet_try before = fillet_of(p, md, np, i);
   if (!claim_and_refit(s, &p[ia], &md[ia], &p[i], &p[ib], &md[ib])) return;
   refit_fillet(s, &p[ia], &md[ia], &p[i], &md[i], &p[ib], &md[ib]);
   if (meets_as_joined(s, p, md, np, iaa) && meets_as_joined(s, p, md, np, ia) &&
       meets_as_joined(s, p, md, np, i) && meets_as_joined(s, p, md, np, ib))
     return;
-  p[ia] = A, p[i] = F, p[ib] = B, md[ia] = ma, md[i] = mf, md[ib] = mb;
+  put_fillet(p, md, np, i, &before);
 }
 
-/* whether the lines of fillet i still run forwards between their joins
-** (bsfit__line_runs_forward) */
+/* segment_internal.h. Its neighbours in the list; none before an open section's first
+** piece, none after its last. */
+int bsfit__line_runs_forward_at(const seg_section *s, const bsfit_piece *p, const seg_model *md,
+                                size_t np, size_t i) {
+  size_t ia = (i + np - 1) % np, ib = (i + 1) % np;
+  int first = !s->closed && i == 0, last = !s->closed && i + 1 == np;
+  return bsfit__line_runs_forward(s, first ? NULL : &p[ia], &md[ia], &p[i], &md[i],
+                                  last ? NULL : &p[ib], &md[ib]);
+}
+
+/* whether the lines of fillet i still run forwards between their joins */
 static int fillet_lines_forward(const seg_section *s, const bsfit_piece *p, const seg_model *md,
                                 size_t np, size_t i) {
-  size_t ia = (i + np - 1) % np, ib = (i + 1) % np, iaa = (ia + np - 1) % np, ibb = (ib + 1) % np;
-  int open_a = !s->closed && ia == 0, open_b = !s->closed && ib + 1 == np;
-  return bsfit__line_runs_forward(s, open_a ? NULL : &p[iaa], &md[iaa], &p[ia], &md[ia], &p[i], &md[i]) &&
-         bsfit__line_runs_forward(s, &p[i], &md[i], &p[ib], &md[ib], open_b ? NULL : &p[ibb], &md[ibb]);
+  return bsfit__line_runs_forward_at(s, p, md, np, (i + np - 1) % np) &&
+         bsfit__line_runs_forward_at(s, p, md, np, (i + 1) % np);
 }
 
 /* Fillet i refitted (and on the first pass under noise, its samples claimed), undone where
@@ -299,13 +318,11 @@ static int fillet_lines_forward(const seg_section *s, const bsfit_piece *p, cons
 static void refit_keeping_lines(const seg_section *s, bsfit_piece *p, seg_model *md, size_t np,
                                 size_t i, int pass) {
   size_t ia = (i + np - 1) % np, ib = (i + 1) % np;
-  bsfit_piece A = p[ia], F = p[i], B = p[ib];
-  seg_model ma = md[ia], mf = md[i], mb = md[ib];
+  seg_fillet_try before = fillet_of(p, md, np, i);
   refit_fillet(s, &p[ia], &md[ia], &p[i], &md[i], &p[ib], &md[ib]);
   /* the second pass places every tangent point on the lines as they end up */
   if (pass == 0 && s->noisy) claim_if_joins_hold(s, p, md, np, i);
-  if (!fillet_lines_forward(s, p, md, np, i))
-    p[ia] = A, p[i] = F, p[ib] = B, md[ia] = ma, md[i] = mf, md[ib] = mb;
+  if (!fillet_lines_forward(s, p, md, np, i)) put_fillet(p, md, np, i, &before);
 }
 
 void bsfit__refit_fillets(const seg_section *s, bsfit_piece *p, seg_model *md, size_t np) {

@@ -191,6 +191,9 @@ void bsfit__cover_fillets(const seg_section *s, bsfit_piece *p, seg_model *md, s
 int bsfit__line_runs_forward(const seg_section *s, const bsfit_piece *prev, const seg_model *mprev,
                              const bsfit_piece *L, const seg_model *ml, const bsfit_piece *next,
                              const seg_model *mnext);
+/* segment_fillets.c: the same for line i of the list p (np pieces) between its neighbours */
+int bsfit__line_runs_forward_at(const seg_section *s, const bsfit_piece *p, const seg_model *md,
+                                size_t np, size_t i);
 
 /* segment_fillets.c: the frame of a fillet between lines A and B (models ma, mb): the
 ** lines' corner V, the unit bisector u into the turn and k = 1 / sin(half the inner angle),

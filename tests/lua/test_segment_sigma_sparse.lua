@@ -34,7 +34,7 @@ end
 -- (before two lines that meet nowhere between them were given the side between them, and
 -- a match far above the levels' robust residual waited for the levels below the start:
 -- no level on 34, read 277, within 220 and 70 far off; 624 sections below 432 and 65)
--- (before corners between lines were tried as fillets, segment_fillets.c: read 280, within
+-- (before corners between lines were tried as fillets, segment_corner_fillets.c: read 280, within
 -- 221 and 69 far off; 624 sections below 437 and 53; the sanitizers' third 95, 70 and 147)
 local FLOOR = { n = 416, within = 224, gross = 67, read = 301, none = 16 }
 if shapes.thinned then FLOOR = { n = 138, within = 71, gross = 26, read = 101, none = 14 } end

@@ -340,7 +340,7 @@ T.test("noisy sections of lines and arcs: Hausdorff < 3 sigma + 1e-3, corners wi
   print(("# noisy sweep: %d of %d sections through the pieces, %d of them outside the floor")
     :format(sharp_n, total, outside))
   T.ok(outside <= 2, ("%d sections through the pieces outside the floor"):format(outside))
-  -- (3 before corners were tried as fillets, segment_fillets.c: a rounded rectangle of 6
+  -- (3 before corners were tried as fillets, segment_corner_fillets.c: a rounded rectangle of 6
   -- samples per side at noise 1e-3, seed 2, now through its pieces with three fillets found
   -- and one read as a chamfer, 0.51 times the floor off where its smooth curve had been 0.71)
   T.ok(far_corners <= 4, ("%d corners farther than a sample from a true one"):format(far_corners))

@@ -111,7 +111,7 @@ end
 -- per side, at noise 1e-3 and 3e-3, which went through their pieces 2.7 and 4.3 times the
 -- floor off, where the smooth path had been 13.4 and 4.4)
 -- (254, 308, 248 and radii 173 of 224 within 2%, 87 of 109 uncertain ones within 3
--- radius_se, before corners between lines were tried as fillets, segment_fillets.c
+-- radius_se, before corners between lines were tried as fillets, segment_corner_fillets.c
 -- bsfit__fillet_corners: 46 arcs more are found, fillets of 3 to 8 samples whose radius
 -- their samples fix to a few percent only, so the share of arcs found within 2% fell to
 -- 175 of 270 and of the uncertain ones within 3 radius_se to 120 of 155 (the radius_se of a
@@ -218,7 +218,7 @@ T.test("letters with serifs on other seeds: a serif's arc across a corner split 
 end)
 
 -- A fillet made from a short line or an arc between two lines first takes the lines'
--- samples past its tangent points (segment_fillets.c, settle_fillet); where the lines
+-- samples past its tangent points (segment_fillets.c, bsfit__settle_fillet); where the lines
 -- refitted without them leave their tolerance or explain less, the fillet is tried as the
 -- lines are. Without that second try a slot of 4 uneven samples per side at noise 1e-4
 -- lost an end arc (10 times the floor off, 0.51 before). Slots, keyholes and D's on seeds

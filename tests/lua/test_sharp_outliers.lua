@@ -83,7 +83,7 @@ end)
 -- difference is allowed only where one of the two runs took the swap, and 3 such (a T of
 -- 10 samples per side at noise 1e-3 missed a trusted sample by 6.8 sigma with them and not
 -- without; a hexagon of 5 the other way round; since fillets are tried at corners,
--- segment_fillets.c, an L with serifs of 4 uneven samples per side at noise 3e-3, whose
+-- segment_corner_fillets.c, an L with serifs of 4 uneven samples per side at noise 3e-3, whose
 -- pieces the swap took without the outliers).
 T.test("the sweep with and without down-weighted outliers: the same pieces but where the outliers move the smooth curve", function()
   local n, differ, unexplained = 0, {}, {}

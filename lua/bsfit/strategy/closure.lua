@@ -41,6 +41,29 @@ local function gap_decision(P, gap, h, hmax)
   return false, gap > 2.5 * hmax
 end
 
+-- Is the path's segment from a along (cx, cy) (length len, the path's length before it
+-- `before`, in all `total`) crossed by a step of P's polygon from sample skip to m - skip
+-- in the path's middle tenths?
+local function segment_crossed(P, skip, a, cx, cy, len, before, total)
+  local function side(x, y) return cx * (y - a[2]) - cy * (x - a[1]) end
+  local px, py = P:get(skip)
+  local sp = side(px, py)
+  for i = skip + 1, #P - skip do
+    local qx, qy = P:get(i)
+    local sq = side(qx, qy)
+    if (sp > 0 and sq < 0) or (sp < 0 and sq > 0) then
+      -- the step crosses the segment's line at fraction f of the step: where along it?
+      local f = sp / (sp - sq)
+      local x, y = px + f * (qx - px), py + f * (qy - py)
+      local along = ((x - a[1]) * cx + (y - a[2]) * cy) / (len * len)
+      local at = (before + along * len) / total
+      if along >= 0 and along <= 1 and at > 0.1 and at < 0.9 then return true end
+    end
+    px, py, sp = qx, qy, sq
+  end
+  return false
+end
+
 -- Does the closing path (points from the last sample to the first: the chord between them,
 -- or the way the closing pieces go round) cross a step of the samples' polygon in its
 -- middle (a tenth of its length from either end at least), a step more than a tenth of
@@ -58,22 +81,7 @@ local function path_crosses(P, path)
     local a, b = path[k], path[k + 1]
     local cx, cy = b[1] - a[1], b[2] - a[2]
     local len = math.sqrt(cx * cx + cy * cy)
-    local function side(x, y) return cx * (y - a[2]) - cy * (x - a[1]) end
-    local px, py = P:get(skip)
-    local sp = side(px, py)
-    for i = skip + 1, m - skip do
-      local qx, qy = P:get(i)
-      local sq = side(qx, qy)
-      if len > 0 and ((sp > 0 and sq < 0) or (sp < 0 and sq > 0)) then
-        -- the step crosses the segment's line at fraction f of the step: where along it?
-        local f = sp / (sp - sq)
-        local x, y = px + f * (qx - px), py + f * (qy - py)
-        local along = ((x - a[1]) * cx + (y - a[2]) * cy) / (len * len)
-        local at = (before + along * len) / total
-        if along >= 0 and along <= 1 and at > 0.1 and at < 0.9 then return true end
-      end
-      px, py, sp = qx, qy, sq
-    end
+    if len > 0 and segment_crossed(P, skip, a, cx, cy, len, before, total) then return true end
     before = before + len
   end
   return false
