@@ -621,13 +621,18 @@ end
 -- array; skip: indices left out), p's own when none is left
 local function piece_residuals(P, p, distances, skip)
   local m, q2, worst, n = #P, 0, 0, 0
-  for k = 0, p.count - 1 do
-    local i = (p.first - 1 + k) % m + 1
-    if not (skip and skip[i]) then
-      local d = distances[i]
-      q2, worst, n = q2 + d * d, math.max(worst, d), n + 1
+  local first, last = p.first, p.first + p.count - 1 -- 1-based, last up to 2 m (wrapped)
+  local function add(a, b) -- samples a .. b, in range
+    for i = a, b do
+      if not (skip and skip[i]) then
+        local d = distances[i]
+        q2, n = q2 + d * d, n + 1
+        if d > worst then worst = d end
+      end
     end
   end
+  add(first, math.min(last, m))
+  if last > m then add(1, last - m) end
   if n == 0 then return p.rms, p.max end
   return math.sqrt(q2 / n), worst
 end
